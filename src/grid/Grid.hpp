@@ -1,0 +1,82 @@
+#pragma once
+// The uniform MAC grid on Omega = (0, Lx) x (0, Ly), distributed by PETSc DMDA
+// (paper section 3.4: velocities on cell faces, p, phi and S at cell centres).
+//
+// Storage convention (all DMs share one parallel layout, nx x ny cells):
+//  * cell-centred scalars (phi, p, rho, eta, S components): index (i, j) is cell i, j,
+//    centre ((i + 1/2) hx, (j + 1/2) hy);
+//  * velocity (dm_vel, dof 2, struct Vel): (i, j).u is the x-velocity on the LEFT face of cell
+//    (i, j), at (i hx, (j + 1/2) hy); (i, j).v is the y-velocity on the BOTTOM face, at
+//    ((i + 1/2) hx, j hy). Because u.n = 0 on every side (eq. 20), the wall faces i = 0,
+//    i = nx (u) and j = 0, j = ny (v) carry zero normal velocity: faces i = 0 / j = 0 are
+//    stored and kept at 0, faces i = nx / j = ny live in the ghost layer of local vectors
+//    (DM_BOUNDARY_GHOSTED) and are filled with 0 by fill_velocity_ghosts().
+// Arrays from DMDAVecGetArray are indexed [j][i] with global indices.
+#include <petscdmda.h>
+
+#include <array>
+
+namespace gf {
+
+struct Vel {
+  PetscScalar u, v;
+};
+
+// The owned index range of this rank and the global sizes: what every kernel loops over.
+struct Box {
+  PetscInt xs = 0, ys = 0, xm = 0, ym = 0;  // owned cells [xs, xs+xm) x [ys, ys+ym)
+  PetscInt nx = 0, ny = 0;                  // global cells
+  double hx = 0, hy = 0;                    // cell size, m
+  double Lx = 0, Ly = 0;                    // domain size, m
+  PetscInt xe() const { return xs + xm; }
+  PetscInt ye() const { return ys + ym; }
+  double xc(PetscInt i) const { return (i + 0.5) * hx; }  // cell centre x, m
+  double yc(PetscInt j) const { return (j + 0.5) * hy; }  // cell centre y, m
+  double xf(PetscInt i) const { return i * hx; }          // left face x, m
+  double yf(PetscInt j) const { return j * hy; }          // bottom face y, m
+};
+
+class Grid {
+ public:
+  static constexpr PetscInt kGhost = 3;  // WENO5 needs 3 cells on each side
+
+  Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly);
+  ~Grid();
+  Grid(const Grid&) = delete;
+  Grid& operator=(const Grid&) = delete;
+
+  MPI_Comm comm() const { return comm_; }
+  const Box& box() const { return box_; }
+  PetscInt nx() const { return box_.nx; }
+  PetscInt ny() const { return box_.ny; }
+  double hx() const { return box_.hx; }
+  double hy() const { return box_.hy; }
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+
+  DM dm_cell() const { return dm_cell_; }  // dof 1, box stencil, width 3: fields
+  DM dm_vel() const { return dm_vel_; }    // dof 2 (Vel), box stencil, width 3: velocity
+  DM dm_ten() const { return dm_ten_; }    // dof 3, box stencil, width 1: S = (Sxx, Sxy, Syy)
+  DM dm_pres() const { return dm_pres_; }  // dof 1, star stencil, width 1: pressure matrix
+  DM dm_visc() const { return dm_visc_; }  // dof 2, box stencil, width 1: viscous matrix
+
+  // Collective sums and maxima over all ranks.
+  double sum(double local) const;
+  double max(double local) const;
+  long long sum(long long local) const;
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  Box box_;
+  DM dm_cell_ = nullptr, dm_vel_ = nullptr, dm_ten_ = nullptr, dm_pres_ = nullptr,
+     dm_visc_ = nullptr;
+};
+
+// Sets the normal velocity on the four walls of a LOCAL (ghosted) velocity array to zero:
+// faces i = 0 and i = nx for u, j = 0 and j = ny for v (eq. 20). Tangential ghost values
+// outside the domain are set to NaN-free copies (mirror), never used by kernels that drop
+// order at walls, but kept finite so no NaN can leak.
+void fill_velocity_ghosts(const Grid& g, Vel** vel);
+
+}  // namespace gf
