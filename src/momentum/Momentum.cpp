@@ -1,0 +1,247 @@
+#include "momentum/Momentum.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "core/Error.hpp"
+#include "operators/Operators.hpp"
+
+namespace gf::momentum {
+
+TimeCoeffs TimeCoeffs::make(double dt, double dt_old, bool first) {
+  TimeCoeffs c;
+  if (first || dt_old <= 0) return c;
+  const double w = dt / dt_old;
+  c.a0 = (1 + 2 * w) / (1 + w);
+  c.a1 = -(1 + w);
+  c.a2 = w * w / (1 + w);
+  c.b0 = 1 + w;
+  c.b1 = -w;
+  return c;
+}
+
+Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol) : g_(g), bc_(bc) {
+  GF_PETSC(DMCreateMatrix(g.dm_visc(), &A_));
+  GF_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  GF_PETSC(MatSetOption(A_, MAT_SYMMETRIC, PETSC_TRUE));
+  GF_PETSC(KSPCreate(g.comm(), &ksp_));
+  GF_PETSC(KSPSetOptionsPrefix(ksp_, "visc_"));
+  GF_PETSC(KSPSetType(ksp_, KSPCG));
+  PC pc;
+  GF_PETSC(KSPGetPC(ksp_, &pc));
+  GF_PETSC(PCSetType(pc, PCHYPRE));
+  GF_PETSC(KSPSetTolerances(ksp_, rtol, 1e-50, PETSC_DEFAULT, 1000));
+  GF_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+  GF_PETSC(KSPSetFromOptions(ksp_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &wall_rhs_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &conv_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &conv_old_));
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lrho_));
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &leta_));
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &letan_));
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lp_));
+  GF_PETSC(DMCreateLocalVector(g.dm_vel(), &lvel_));
+  GF_PETSC(DMCreateLocalVector(g.dm_vel(), &lvel_old_));
+}
+
+Predictor::~Predictor() {
+  for (Vec* v : {&wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_, &lp_, &lvel_,
+                 &lvel_old_})
+    VecDestroy(v);
+  KSPDestroy(&ksp_);
+  MatDestroy(&A_);
+}
+
+namespace {
+void to_local(DM dm, Vec global, Vec local) {
+  GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, local));
+  GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, local));
+}
+}  // namespace
+
+void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
+  const Box& b = g_.box();
+  to_local(g_.dm_cell(), rho, lrho_);
+  to_local(g_.dm_cell(), eta, leta_);
+  to_local(g_.dm_cell(), eta_node, letan_);
+  const PetscScalar **r, **ec, **en;
+  Vel** wr;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), leta_, &ec));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), letan_, &en));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), wall_rhs_, &wr));
+  GF_PETSC(MatZeroEntries(A_));
+
+  const double hx = b.hx, hy = b.hy, hx2 = hx * hx, hy2 = hy * hy, hxy = hx * hy;
+  MatStencil row, col[12];
+  PetscScalar val[12];
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      // ---- x-momentum, unknown u on the left face of cell (i, j) ----
+      row.i = i; row.j = j; row.k = 0; row.c = 0;
+      wr[j][i].u = 0.0;
+      if (i == 0) {  // wall face: u = 0 (eq. 20); a scaled identity row keeps A SPD
+        col[0] = row;
+        val[0] = a0dt * r[j][i];
+        GF_PETSC(MatSetValuesStencil(A_, 1, &row, 1, col, val, INSERT_VALUES));
+      } else {
+        int n = 0;
+        double diag = a0dt * ops::rho_xface(r, i, j);
+        auto add = [&](PetscInt ii, PetscInt jj, PetscInt cc, double v) {
+          col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = cc; val[n] = v; ++n;
+        };
+        // normal stress 2 eta du/dx at the centres of cells i-1 and i
+        diag += 2 * (ec[j][i] + ec[j][i - 1]) / hx2;
+        if (i + 1 < b.nx) add(i + 1, j, 0, -2 * ec[j][i] / hx2);
+        if (i - 1 >= 1) add(i - 1, j, 0, -2 * ec[j][i - 1] / hx2);
+        // shear stress eta (du/dy + dv/dx) at the top node (i, j+1)
+        if (j + 1 < b.ny) {
+          const double e = en[j + 1][i];
+          diag += e / hy2;
+          add(i, j + 1, 0, -e / hy2);
+          add(i, j + 1, 1, -e / hxy);
+          add(i - 1, j + 1, 1, e / hxy);
+        } else {  // top wall
+          const double e = 0.5 * (ec[j][i - 1] + ec[j][i]);
+          const double c = wall_coefficient(bc_.top, e, 0.5 * hy);
+          diag += c / hy;
+          wr[j][i].u += c * bc_.top.velocity / hy;
+        }
+        // ... and at the bottom node (i, j)
+        if (j >= 1) {
+          const double e = en[j][i];
+          diag += e / hy2;
+          add(i, j - 1, 0, -e / hy2);
+          add(i, j, 1, e / hxy);
+          add(i - 1, j, 1, -e / hxy);
+        } else {  // bottom wall
+          const double e = 0.5 * (ec[j][i - 1] + ec[j][i]);
+          const double c = wall_coefficient(bc_.bottom, e, 0.5 * hy);
+          diag += c / hy;
+          wr[j][i].u += c * bc_.bottom.velocity / hy;
+        }
+        add(i, j, 0, diag);
+        GF_PETSC(MatSetValuesStencil(A_, 1, &row, n, col, val, INSERT_VALUES));
+      }
+      // ---- y-momentum, unknown v on the bottom face of cell (i, j) ----
+      row.c = 1;
+      wr[j][i].v = 0.0;
+      if (j == 0) {
+        col[0] = row;
+        val[0] = a0dt * r[j][i];
+        GF_PETSC(MatSetValuesStencil(A_, 1, &row, 1, col, val, INSERT_VALUES));
+      } else {
+        int n = 0;
+        double diag = a0dt * ops::rho_yface(r, i, j);
+        auto add = [&](PetscInt ii, PetscInt jj, PetscInt cc, double v) {
+          col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = cc; val[n] = v; ++n;
+        };
+        diag += 2 * (ec[j][i] + ec[j - 1][i]) / hy2;
+        if (j + 1 < b.ny) add(i, j + 1, 1, -2 * ec[j][i] / hy2);
+        if (j - 1 >= 1) add(i, j - 1, 1, -2 * ec[j - 1][i] / hy2);
+        // shear stress at the right node (i+1, j)
+        if (i + 1 < b.nx) {
+          const double e = en[j][i + 1];
+          diag += e / hx2;
+          add(i + 1, j, 1, -e / hx2);
+          add(i + 1, j, 0, -e / hxy);
+          add(i + 1, j - 1, 0, e / hxy);
+        } else {  // right wall
+          const double e = 0.5 * (ec[j - 1][i] + ec[j][i]);
+          const double c = wall_coefficient(bc_.right, e, 0.5 * hx);
+          diag += c / hx;
+          wr[j][i].v += c * bc_.right.velocity / hx;
+        }
+        // ... and at the left node (i, j)
+        if (i >= 1) {
+          const double e = en[j][i];
+          diag += e / hx2;
+          add(i - 1, j, 1, -e / hx2);
+          add(i, j, 0, e / hxy);
+          add(i, j - 1, 0, -e / hxy);
+        } else {  // left wall
+          const double e = 0.5 * (ec[j - 1][i] + ec[j][i]);
+          const double c = wall_coefficient(bc_.left, e, 0.5 * hx);
+          diag += c / hx;
+          wr[j][i].v += c * bc_.left.velocity / hx;
+        }
+        add(i, j, 1, diag);
+        GF_PETSC(MatSetValuesStencil(A_, 1, &row, n, col, val, INSERT_VALUES));
+      }
+    }
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), wall_rhs_, &wr));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), letan_, &en));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), leta_, &ec));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(KSPSetOperators(ksp_, A_, A_));
+}
+
+void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoeffs& c,
+                             double dt, const std::array<double, 2>& grav, Vec rhs) {
+  const Box& b = g_.box();
+  to_local(g_.dm_vel(), vel, lvel_);
+  to_local(g_.dm_vel(), vel_old, lvel_old_);
+  to_local(g_.dm_cell(), p, lp_);
+  to_local(g_.dm_cell(), rho, lrho_);
+  Vel **lv, **lvo, **cv, **cvo, **out;
+  const Vel **wr;
+  const PetscScalar **pp, **r;
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), lvel_, &lv));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), lvel_old_, &lvo));
+  fill_velocity_ghosts(g_, lv);
+  fill_velocity_ghosts(g_, lvo);
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), conv_, &cv));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), conv_old_, &cvo));
+  ops::convection(b, lv, cv);
+  if (c.b1 != 0.0) ops::convection(b, lvo, cvo);
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lp_, &pp));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), wall_rhs_, &wr));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), rhs, &out));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if (i == 0) {
+        out[j][i].u = 0.0;
+      } else {
+        const double rf = ops::rho_xface(r, i, j);
+        const double hist = -(c.a1 * lv[j][i].u + c.a2 * lvo[j][i].u) / dt;
+        const double conv = c.b0 * cv[j][i].u + (c.b1 != 0.0 ? c.b1 * cvo[j][i].u : 0.0);
+        out[j][i].u = rf * (hist - conv) - (pp[j][i] - pp[j][i - 1]) / b.hx + rf * grav[0] +
+                      wr[j][i].u;
+      }
+      if (j == 0) {
+        out[j][i].v = 0.0;
+      } else {
+        const double rf = ops::rho_yface(r, i, j);
+        const double hist = -(c.a1 * lv[j][i].v + c.a2 * lvo[j][i].v) / dt;
+        const double conv = c.b0 * cv[j][i].v + (c.b1 != 0.0 ? c.b1 * cvo[j][i].v : 0.0);
+        out[j][i].v = rf * (hist - conv) - (pp[j][i] - pp[j - 1][i]) / b.hy + rf * grav[1] +
+                      wr[j][i].v;
+      }
+    }
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), rhs, &out));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), wall_rhs_, &wr));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lp_, &pp));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), conv_old_, &cvo));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), conv_, &cv));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_old_, &lvo));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &lv));
+}
+
+int Predictor::solve(Vec rhs, Vec u_tilde) {
+  GF_PETSC(KSPSolve(ksp_, rhs, u_tilde));
+  KSPConvergedReason reason;
+  PetscInt its;
+  GF_PETSC(KSPGetConvergedReason(ksp_, &reason));
+  GF_PETSC(KSPGetIterationNumber(ksp_, &its));
+  if (reason < 0)
+    throw RunError("viscous solve (prefix -visc_) did not converge: " +
+                   std::string(KSPConvergedReasons[reason]) + " after " + std::to_string(its) +
+                   " iterations; try a smaller time step or -visc_pc_type hypre");
+  return static_cast<int>(its);
+}
+
+}  // namespace gf::momentum

@@ -1,0 +1,138 @@
+#include "projection/Projection.hpp"
+
+#include <string>
+
+#include "core/Error.hpp"
+#include "operators/Operators.hpp"
+
+namespace gf::projection {
+
+Projector::Projector(const Grid& g, double rtol) : g_(g) {
+  GF_PETSC(DMCreateMatrix(g.dm_pres(), &M_));
+  GF_PETSC(MatSetOption(M_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  GF_PETSC(MatSetOption(M_, MAT_SYMMETRIC, PETSC_TRUE));
+  GF_PETSC(MatNullSpaceCreate(g.comm(), PETSC_TRUE, 0, nullptr, &null_));
+  GF_PETSC(MatSetNullSpace(M_, null_));
+  GF_PETSC(KSPCreate(g.comm(), &ksp_));
+  GF_PETSC(KSPSetOptionsPrefix(ksp_, "pres_"));
+  GF_PETSC(KSPSetType(ksp_, KSPCG));
+  PC pc;
+  GF_PETSC(KSPGetPC(ksp_, &pc));
+  GF_PETSC(PCSetType(pc, PCHYPRE));
+  GF_PETSC(KSPSetTolerances(ksp_, rtol, 1e-50, PETSC_DEFAULT, 1000));
+  GF_PETSC(KSPSetFromOptions(ksp_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &rhs_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &psi_));
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lpsi_));
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lrho_));
+  GF_PETSC(DMCreateLocalVector(g.dm_vel(), &lvel_));
+}
+
+Projector::~Projector() {
+  for (Vec* v : {&rhs_, &psi_, &lpsi_, &lrho_, &lvel_}) VecDestroy(v);
+  MatNullSpaceDestroy(&null_);
+  KSPDestroy(&ksp_);
+  MatDestroy(&M_);
+}
+
+void Projector::assemble(Vec rho) {
+  const Box& b = g_.box();
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), rho, INSERT_VALUES, lrho_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), rho, INSERT_VALUES, lrho_));
+  const PetscScalar** r;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(MatZeroEntries(M_));
+  const double ihx2 = 1.0 / (b.hx * b.hx), ihy2 = 1.0 / (b.hy * b.hy);
+  MatStencil row, col[5];
+  PetscScalar val[5];
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      row.i = i; row.j = j; row.k = 0; row.c = 0;
+      int n = 0;
+      double diag = 0;
+      auto add = [&](PetscInt ii, PetscInt jj, double beta) {  // beta = (1/rho_face)/h^2
+        col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = 0; val[n] = -beta; ++n;
+        diag += beta;
+      };
+      // Wall faces carry no flux (u.n = 0, eq. 20 and (u^{n+1} - u~).n = 0 in eq. 32).
+      if (i > 0) add(i - 1, j, ihx2 / ops::rho_xface(r, i, j));
+      if (i + 1 < b.nx) add(i + 1, j, ihx2 / ops::rho_xface(r, i + 1, j));
+      if (j > 0) add(i, j - 1, ihy2 / ops::rho_yface(r, i, j));
+      if (j + 1 < b.ny) add(i, j + 1, ihy2 / ops::rho_yface(r, i, j + 1));
+      col[n] = row;
+      val[n] = diag;
+      ++n;
+      GF_PETSC(MatSetValuesStencil(M_, 1, &row, n, col, val, INSERT_VALUES));
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(MatAssemblyBegin(M_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(MatAssemblyEnd(M_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(KSPSetOperators(ksp_, M_, M_));
+}
+
+int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
+  const Box& b = g_.box();
+  // Right-hand side -(a0/dt) div u~, made consistent with the null space.
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_vel(), vel, INSERT_VALUES, lvel_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_vel(), vel, INSERT_VALUES, lvel_));
+  {
+    Vel** lv;
+    PetscScalar** f;
+    GF_PETSC(DMDAVecGetArray(g_.dm_vel(), lvel_, &lv));
+    fill_velocity_ghosts(g_, lv);
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), rhs_, &f));
+    ops::divergence(b, lv, f);
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) f[j][i] *= -a0 / dt;
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), rhs_, &f));
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &lv));
+  }
+  GF_PETSC(MatNullSpaceRemove(null_, rhs_));
+  GF_PETSC(VecSet(psi_, 0.0));
+  GF_PETSC(KSPSolve(ksp_, rhs_, psi_));
+  KSPConvergedReason reason;
+  PetscInt its;
+  GF_PETSC(KSPGetConvergedReason(ksp_, &reason));
+  GF_PETSC(KSPGetIterationNumber(ksp_, &its));
+  if (reason < 0)
+    throw RunError("pressure solve (prefix -pres_) did not converge: " +
+                   std::string(KSPConvergedReasons[reason]) + " after " + std::to_string(its) +
+                   " iterations; try -pres_pc_type hypre or a smaller time step");
+
+  // Velocity correction u = u~ - (dt/a0) (1/rho_face) grad psi on the interior faces.
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), psi_, INSERT_VALUES, lpsi_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), psi_, INSERT_VALUES, lpsi_));
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), rho, INSERT_VALUES, lrho_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), rho, INSERT_VALUES, lrho_));
+  const PetscScalar **ps, **r;
+  Vel** u;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lpsi_, &ps));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), vel, &u));
+  const double k = dt / a0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if (i > 0) u[j][i].u -= k * (ps[j][i] - ps[j][i - 1]) / (b.hx * ops::rho_xface(r, i, j));
+      else u[j][i].u = 0.0;
+      if (j > 0) u[j][i].v -= k * (ps[j][i] - ps[j - 1][i]) / (b.hy * ops::rho_yface(r, i, j));
+      else u[j][i].v = 0.0;
+    }
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), vel, &u));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lpsi_, &ps));
+
+  // p^{n+1} = p^n + psi, then the level: mean over the top row of cells is zero.
+  GF_PETSC(VecAXPY(p, 1.0, psi_));
+  double top_sum = 0;
+  {
+    const PetscScalar** pa;
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), p, &pa));
+    if (b.ye() == b.ny)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) top_sum += pa[b.ny - 1][i];
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), p, &pa));
+  }
+  GF_PETSC(VecShift(p, -g_.sum(top_sum) / b.nx));
+  return static_cast<int>(its);
+}
+
+}  // namespace gf::projection

@@ -1,0 +1,40 @@
+#pragma once
+// The incremental projection of eq. 32:
+//   rho^{n+1} a0 (u^{n+1} - u~) / dt + grad(p^{n+1} - p^n) = 0,   div u^{n+1} = 0,
+// i.e. with psi = p^{n+1} - p^n the variable-density Poisson problem
+//   -div( (1/rho) grad psi ) = -(a0/dt) div u~    (homogeneous Neumann on every wall)
+// followed by u^{n+1} = u~ - (dt/a0) (1/rho_face) grad psi and p^{n+1} = p^n + psi.
+// a0 = 3/2 for the constant-step BDF2 of the paper (momentum/Momentum.hpp).
+//
+// The operator is symmetric positive semi-definite with the constants as null space; it is
+// solved with CG and BoomerAMG by default, options prefix -pres_ (any PETSc KSP/PC can be
+// chosen at run time). The pressure level is fixed by making the mean pressure on the top row
+// of cells zero: the yield stress of the Drucker-Prager model (eq. 19) needs the absolute
+// pressure, and the top of the domain is in the air at the reference (atmospheric) pressure.
+#include <petscksp.h>
+
+#include "grid/Grid.hpp"
+
+namespace gf::projection {
+
+class Projector {
+ public:
+  Projector(const Grid& g, double rtol);
+  ~Projector();
+  Projector(const Projector&) = delete;
+  Projector& operator=(const Projector&) = delete;
+
+  // Assembles the Poisson matrix for the current density (cell-centred global Vec).
+  void assemble(Vec rho);
+  // Projects u_tilde (in place -> u^{n+1}) and updates p (p^n -> p^{n+1}). Returns KSP iterations.
+  int project(Vec vel, Vec p, Vec rho, double a0, double dt);
+
+ private:
+  const Grid& g_;
+  Mat M_ = nullptr;
+  KSP ksp_ = nullptr;
+  MatNullSpace null_ = nullptr;
+  Vec rhs_ = nullptr, psi_ = nullptr, lpsi_ = nullptr, lvel_ = nullptr, lrho_ = nullptr;
+};
+
+}  // namespace gf::projection
