@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Figures of a granflow run, from its output folder alone.
+
+usage: plot_run.py OUTDIR        (writes OUTDIR/figures/*.png)
+
+- diagnostics.png: granular volume change, max |u|, kinetic energy, max divergence against t;
+- front.png: for a run with a probe named "bottom" sampling phi along the bottom, the front
+  position (furthest x where phi < 0, linearly interpolated) against time, with the
+  shallow-water (Ritter) front x = x1 + 2 sqrt(g H) t as a reference bound, and front.csv.
+"""
+import csv
+import math
+import os
+import sys
+import tomllib
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]} if rows else {}
+
+
+def front_from_probe(path):
+    """Front position per output time from a probe block file: t,x,y,phi,..."""
+    d = read_csv(path)
+    fronts = []
+    for t in np.unique(d["t"]):
+        m = d["t"] == t
+        x, phi = d["x"][m], d["phi"][m]
+        inside = np.nonzero(phi < 0)[0]
+        if len(inside) == 0:
+            fronts.append((t, float("nan")))
+            continue
+        k = inside[-1]
+        if k + 1 < len(x) and phi[k + 1] >= 0:  # zero crossing between k and k+1
+            xf = x[k] + (x[k + 1] - x[k]) * (-phi[k]) / (phi[k + 1] - phi[k])
+        else:
+            xf = x[k]
+        fronts.append((t, xf))
+    return np.array(fronts)
+
+
+def main(out):
+    figs = os.path.join(out, "figures")
+    os.makedirs(figs, exist_ok=True)
+    case = {}
+    if os.path.exists(os.path.join(out, "case.toml")):
+        with open(os.path.join(out, "case.toml"), "rb") as f:
+            case = tomllib.load(f)
+    d = read_csv(os.path.join(out, "diagnostics.csv"))
+    fig, ax = plt.subplots(2, 2, figsize=(10, 7))
+    for a, (key, label) in zip(ax.flat, [("volume_change_pct", "granular volume change (%)"),
+                                         ("max_speed", "max |u| (m/s)"),
+                                         ("kinetic_energy", "kinetic energy (J/m)"),
+                                         ("max_divergence", "max |div u| (1/s)")]):
+        a.plot(d["t"], d[key])
+        a.set_xlabel("t (s)")
+        a.set_ylabel(label)
+        a.grid(alpha=0.3)
+    fig.suptitle(case.get("title", out))
+    fig.tight_layout()
+    fig.savefig(os.path.join(figs, "diagnostics.png"), dpi=120)
+    plt.close(fig)
+
+    bottom = os.path.join(out, "probes", "bottom.csv")
+    if os.path.exists(bottom):
+        fr = front_from_probe(bottom)
+        np.savetxt(os.path.join(out, "front.csv"), fr, delimiter=",", header="t,front_x",
+                   comments="")
+        fig, ax = plt.subplots(figsize=(7, 5))
+        ax.plot(fr[:, 0], fr[:, 1], "o-", ms=3, label="granflow")
+        ini = case.get("initial", {})
+        g = abs(case.get("physics", {}).get("gravity", [0, -9.81])[1])
+        if "x1" in ini and "y1" in ini:
+            x1, H = ini["x1"], ini["y1"] - ini.get("y0", 0.0)
+            t = np.linspace(0, fr[-1, 0], 50)
+            ax.plot(t, x1 + 2 * math.sqrt(g * H) * t, "k--",
+                    label=r"shallow water (Ritter): $x_1 + 2\sqrt{gH}\,t$")
+        Lx = case.get("domain", {}).get("Lx")
+        if Lx:
+            ax.axhline(Lx, color="gray", lw=0.8)
+            ax.set_ylim(0, 1.05 * Lx)
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("front position x (m)")
+        ax.set_title(case.get("title", "") + ": front position")
+        ax.grid(alpha=0.3)
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(figs, "front.png"), dpi=120)
+        plt.close(fig)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
