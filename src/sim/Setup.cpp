@@ -1,0 +1,83 @@
+#include "sim/Setup.hpp"
+
+#include <algorithm>
+
+#include "core/Error.hpp"
+#include "levelset/PrescribedFlow.hpp"
+
+namespace gf {
+
+PhysicsConfig physics_from_case(const CaseConfig& c) {
+  PhysicsConfig p;
+  p.rho_gran = c.granular.rho;
+  p.eta_gran = c.granular.eta;
+  p.rho_air = c.air.rho;
+  p.eta_air = c.air.eta;
+  p.gravity = c.gravity;
+  p.levelset = c.levelset.enabled;
+  p.eps = c.levelset.eps_cells * std::max(c.hx, c.hy);
+  p.redistance_every = c.levelset.redistance_every;
+  p.redistance_iters = c.levelset.redistance_iters;
+  p.redistance_cfl = c.levelset.redistance_cfl;
+  auto wall = [&](CaseConfig::Side s) {
+    const auto& w = c.walls[s];
+    return WallBC{static_cast<WallType>(w.type), w.eta_b, w.velocity};
+  };
+  p.bc.left = wall(CaseConfig::kLeft);
+  p.bc.right = wall(CaseConfig::kRight);
+  p.bc.bottom = wall(CaseConfig::kBottom);
+  p.bc.top = wall(CaseConfig::kTop);
+  p.pressure_rtol = c.solver.pressure_rtol;
+  p.viscous_rtol = c.solver.viscous_rtol;
+  switch (c.flow.prescribed) {
+    case CaseConfig::Prescribed::None: p.prescribed = PrescribedFlow::None; break;
+    case CaseConfig::Prescribed::Rotation: p.prescribed = PrescribedFlow::Rotation; break;
+    case CaseConfig::Prescribed::SingleVortex: p.prescribed = PrescribedFlow::SingleVortex; break;
+  }
+  p.omega = c.flow.omega;
+  p.cx = c.flow.cx;
+  p.cy = c.flow.cy;
+  p.period = c.flow.period;
+  return p;
+}
+
+RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
+  RunConfig r;
+  r.t_end = c.time.t_end;
+  r.dt_fixed = c.time.dt_mode == CaseConfig::DtMode::Fixed;
+  r.dt = r.dt_fixed ? c.time.dt : initial_dt(c);
+  r.cfl = c.time.cfl;
+  r.dt_max = c.time.dt_max;
+  r.dt_min = c.time.dt_min;
+  r.max_steps = c.time.max_steps;
+  r.output_interval = c.output.interval;
+  r.vtk_interval = c.output.vtk_interval;
+  r.progress_interval = c.output.progress_interval;
+  for (const auto& pr : c.probes) {
+    io::ProbeSpec s{pr.name, pr.x0, pr.y0, pr.x1, pr.y1, pr.points, {}};
+    for (auto f : pr.fields) s.fields.emplace_back(to_string(f));
+    r.probes.push_back(std::move(s));
+  }
+  r.out_dir = out_dir;
+  r.title = c.title;
+  return r;
+}
+
+void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi) {
+  const auto& in = c.initial;
+  if (!c.levelset.enabled) {
+    GF_PETSC(VecSet(phi, -1.0));
+    return;
+  }
+  switch (in.shape) {
+    case CaseConfig::Shape::None: GF_PETSC(VecSet(phi, 1.0)); break;  // all air
+    case CaseConfig::Shape::Rectangle: levelset::init_rectangle(g, phi, in.x0, in.x1, in.y0, in.y1); break;
+    case CaseConfig::Shape::Layer: levelset::init_layer(g, phi, in.height); break;
+    case CaseConfig::Shape::Circle: levelset::init_circle(g, phi, in.cx, in.cy, in.radius); break;
+    case CaseConfig::Shape::Zalesak:
+      levelset::init_zalesak(g, phi, in.cx, in.cy, in.radius, in.slot_width, in.slot_depth);
+      break;
+  }
+}
+
+}  // namespace gf

@@ -1,0 +1,77 @@
+#pragma once
+// One time step of the two-phase model, in the order of the paper (sections 3.1-3.3):
+//   1. phi^{n+1} from eq. 26 with the solenoidal u^n (WENO5 + TVD-RK3), redistanced every N steps;
+//   2. rho^{n+1}, eta^{n+1} from phi^{n+1} (eq. 25, harmonic mean with the height fraction);
+//   3. prediction (eq. 31): explicit terms, then the implicit viscous solve for u~
+//      (the fixed point with the plastic stress S plugs in here: it only changes the rhs);
+//   4. projection (eq. 32): u^{n+1}, p^{n+1}.
+// This is the only code that calls all the layers; diagnostics and output live in sim/.
+#include <array>
+#include <memory>
+
+#include "boundary/Boundary.hpp"
+#include "fields/Fields.hpp"
+#include "grid/Grid.hpp"
+
+namespace gf {
+namespace levelset {
+class Advector;
+class Redistancer;
+}  // namespace levelset
+namespace momentum {
+class Predictor;
+}
+namespace projection {
+class Projector;
+}
+
+enum class PrescribedFlow { None, Rotation, SingleVortex };
+
+struct PhysicsConfig {
+  double rho_gran = 1550, eta_gran = 0.5;  // kg/m^3, Pa s
+  double rho_air = 1.2, eta_air = 1.8e-5;  // kg/m^3, Pa s
+  std::array<double, 2> gravity{0.0, -9.81};  // m/s^2
+  bool levelset = true;       // false: one phase (the "granular" values everywhere)
+  double eps = 0;             // m, half-width of the smeared Heaviside (eq. 25)
+  int redistance_every = 5;   // steps, 0 = never
+  int redistance_iters = 10;
+  double redistance_cfl = 0.5;
+  Boundaries bc;
+  double pressure_rtol = 1e-10, viscous_rtol = 1e-10;
+  PrescribedFlow prescribed = PrescribedFlow::None;
+  double omega = 0, cx = 0, cy = 0, period = 1;  // rad/s, m, m, s
+};
+
+struct StepStats {
+  int visc_its = 0, pres_its = 0;
+  bool redistanced = false;
+};
+
+class Stepper {
+ public:
+  Stepper(const Grid& g, const PhysicsConfig& cfg);
+  ~Stepper();
+
+  // Properties at t = 0 and the initial (hydrostatic-like) pressure of the fluid at rest.
+  void initialize(State& s);
+  // Advances s from t^n to t^n + dt.
+  StepStats step(State& s, double dt);
+  // rho, eta (cells) and eta at the nodes from phi (step 2); public for diagnostics and tests.
+  void update_properties(State& s);
+  // Sets s.vel to the prescribed velocity at time t (level-set-only runs).
+  void prescribe_velocity(State& s, double t);
+
+  Vec eta_node() const { return eta_node_; }
+  const PhysicsConfig& config() const { return cfg_; }
+
+ private:
+  const Grid& g_;
+  PhysicsConfig cfg_;
+  std::unique_ptr<levelset::Advector> advector_;
+  std::unique_ptr<levelset::Redistancer> redistancer_;
+  std::unique_ptr<momentum::Predictor> predictor_;
+  std::unique_ptr<projection::Projector> projector_;
+  Vec eta_node_ = nullptr, rhs_ = nullptr, u_tilde_ = nullptr, lphi_ = nullptr;
+};
+
+}  // namespace gf
