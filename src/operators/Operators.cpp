@@ -2,38 +2,63 @@
 
 namespace gf::ops {
 
+namespace {
+
+// van Leer's limited slope: the harmonic mean of the two one-sided differences, 0 at extrema.
+inline double van_leer(double a, double b) { return a * b > 0 ? 2 * a * b / (a + b) : 0.0; }
+
+// The transported velocity component at a flux point between the samples q0 and q1, by a
+// MUSCL reconstruction from the upwind side (advecting velocity a). qm1 / q2 are the next
+// samples upstream on each side; where one lies beyond a wall (have_m1 / have_2 false) the
+// reconstruction drops to first-order upwind: no ghost extrapolation.
+inline double muscl(double qm1, double q0, double q1, double q2, bool have_m1, bool have_2,
+                    double a) {
+  if (a >= 0) return have_m1 ? q0 + 0.5 * van_leer(q0 - qm1, q1 - q0) : q0;
+  return have_2 ? q1 - 0.5 * van_leer(q2 - q1, q1 - q0) : q1;
+}
+
+}  // namespace
+
 void convection(const Box& b, const Vel* const* vel, Vel** out) {
   const double hx = b.hx, hy = b.hy;
+  const PetscInt nx = b.nx, ny = b.ny;
+  // x-momentum: the flux of u through the cell centre c (between u-faces c and c+1) and through
+  // the node (i, jn) (between u(i, jn-1) and u(i, jn)). u-face indices 0..nx exist (0 and nx are
+  // walls, u = 0); rows 0..ny-1.
+  auto fx_u = [&](PetscInt c, PetscInt j) {
+    const double a = 0.5 * (vel[j][c].u + vel[j][c + 1].u);
+    const double q = muscl(c >= 1 ? vel[j][c - 1].u : 0.0, vel[j][c].u, vel[j][c + 1].u,
+                           c + 2 <= nx ? vel[j][c + 2].u : 0.0, c >= 1, c + 2 <= nx, a);
+    return a * q;
+  };
+  auto fy_u = [&](PetscInt i, PetscInt jn) {
+    if (jn == 0 || jn == ny) return 0.0;  // wall: v = 0
+    const double a = 0.5 * (vel[jn][i - 1].v + vel[jn][i].v);
+    const double q = muscl(jn >= 2 ? vel[jn - 2][i].u : 0.0, vel[jn - 1][i].u, vel[jn][i].u,
+                           jn + 1 <= ny - 1 ? vel[jn + 1][i].u : 0.0, jn >= 2, jn + 1 <= ny - 1, a);
+    return a * q;
+  };
+  // y-momentum: the flux of v through the node (in, j) (between v(in-1, j) and v(in, j)) and
+  // through the cell centre c (between v-faces c and c+1).
+  auto fx_v = [&](PetscInt in, PetscInt j) {
+    if (in == 0 || in == nx) return 0.0;  // wall: u = 0
+    const double a = 0.5 * (vel[j - 1][in].u + vel[j][in].u);
+    const double q = muscl(in >= 2 ? vel[j][in - 2].v : 0.0, vel[j][in - 1].v, vel[j][in].v,
+                           in + 1 <= nx - 1 ? vel[j][in + 1].v : 0.0, in >= 2, in + 1 <= nx - 1, a);
+    return a * q;
+  };
+  auto fy_v = [&](PetscInt i, PetscInt c) {
+    const double a = 0.5 * (vel[c][i].v + vel[c + 1][i].v);
+    const double q = muscl(c >= 1 ? vel[c - 1][i].v : 0.0, vel[c][i].v, vel[c + 1][i].v,
+                           c + 2 <= ny ? vel[c + 2][i].v : 0.0, c >= 1, c + 2 <= ny, a);
+    return a * q;
+  };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      // x-momentum on face (i, j): d(uu)/dx between cell centres i-1 and i, d(uv)/dy between
-      // the nodes (i, j) and (i, j+1). At wall nodes v = 0, so the uv flux vanishes.
-      if (i == 0) {
-        out[j][i].u = 0.0;
-      } else {
-        const double uc_r = 0.5 * (vel[j][i].u + vel[j][i + 1].u);
-        const double uc_l = 0.5 * (vel[j][i - 1].u + vel[j][i].u);
-        double fy_t = 0.0, fy_b = 0.0;
-        if (j + 1 < b.ny)
-          fy_t = 0.25 * (vel[j][i].u + vel[j + 1][i].u) * (vel[j + 1][i - 1].v + vel[j + 1][i].v);
-        if (j > 0)
-          fy_b = 0.25 * (vel[j - 1][i].u + vel[j][i].u) * (vel[j][i - 1].v + vel[j][i].v);
-        out[j][i].u = (uc_r * uc_r - uc_l * uc_l) / hx + (fy_t - fy_b) / hy;
-      }
-      // y-momentum on face (i, j): d(uv)/dx between nodes (i, j) and (i+1, j), d(vv)/dy between
-      // cell centres j-1 and j.
-      if (j == 0) {
-        out[j][i].v = 0.0;
-      } else {
-        const double vc_t = 0.5 * (vel[j][i].v + vel[j + 1][i].v);
-        const double vc_b = 0.5 * (vel[j - 1][i].v + vel[j][i].v);
-        double fx_r = 0.0, fx_l = 0.0;
-        if (i + 1 < b.nx)
-          fx_r = 0.25 * (vel[j - 1][i + 1].u + vel[j][i + 1].u) * (vel[j][i].v + vel[j][i + 1].v);
-        if (i > 0)
-          fx_l = 0.25 * (vel[j - 1][i].u + vel[j][i].u) * (vel[j][i - 1].v + vel[j][i].v);
-        out[j][i].v = (fx_r - fx_l) / hx + (vc_t * vc_t - vc_b * vc_b) / hy;
-      }
+      out[j][i].u = (i == 0) ? 0.0
+                             : (fx_u(i, j) - fx_u(i - 1, j)) / hx + (fy_u(i, j + 1) - fy_u(i, j)) / hy;
+      out[j][i].v = (j == 0) ? 0.0
+                             : (fx_v(i + 1, j) - fx_v(i, j)) / hx + (fy_v(i, j) - fy_v(i, j - 1)) / hy;
     }
 }
 
