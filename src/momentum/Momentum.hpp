@@ -10,7 +10,7 @@
 //
 // The implicit viscous operator is the full coupled u-v operator  (a0/dt) rho - div(2 eta D(.)),
 // assembled once per step (it depends on rho^{n+1}, eta^{n+1}, dt) and solved with a PETSc KSP
-// under the option prefix -visc_. It is symmetric positive definite (standard MAC
+// under the option prefix -visc_ (default CG + Jacobi). It is symmetric positive definite (standard MAC
 // discretisation), so CG applies. The fixed point of eq. 31 only changes the right-hand side,
 // so the matrix and its preconditioner are reused across the fixed-point iterations.
 #include <petscksp.h>

@@ -106,16 +106,21 @@ StepStats Stepper::step(State& s, double dt) {
     ++s.step;
     return st;
   }
-  // 2. rho^{n+1}, eta^{n+1}.
-  update_properties(s);
+  // 2. rho^{n+1}, eta^{n+1} (constant in a one-phase run: then the matrices, and the
+  //    preconditioners built on them, are kept from step to step).
+  const bool props_change = cfg_.levelset || first;
+  if (props_change) update_properties(s);
   // 3. Prediction, eq. 31 (kappa = 0: Newtonian phases).
   const auto c = momentum::TimeCoeffs::make(dt, s.dt, first);
-  predictor_->assemble(s.rho, s.eta, eta_node_, c.a0 / dt);
+  if (props_change || c.a0 / dt != assembled_a0dt_) {
+    predictor_->assemble(s.rho, s.eta, eta_node_, c.a0 / dt);
+    assembled_a0dt_ = c.a0 / dt;
+  }
   predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs_);
   GF_PETSC(VecCopy(s.vel, u_tilde_));  // initial guess
   st.visc_its = predictor_->solve(rhs_, u_tilde_);
   // 4. Projection, eq. 32.
-  projector_->assemble(s.rho);
+  if (props_change) projector_->assemble(s.rho);
   st.pres_its = projector_->project(u_tilde_, s.p, s.rho, c.a0, dt);
   GF_PETSC(VecCopy(s.vel, s.vel_old));
   GF_PETSC(VecCopy(u_tilde_, s.vel));

@@ -71,6 +71,7 @@ class Stepper {
   std::unique_ptr<levelset::Redistancer> redistancer_;
   std::unique_ptr<momentum::Predictor> predictor_;
   std::unique_ptr<projection::Projector> projector_;
+  double assembled_a0dt_ = -1;  // a0/dt of the assembled viscous matrix, 1/s
   Vec eta_node_ = nullptr, rhs_ = nullptr, u_tilde_ = nullptr, lphi_ = nullptr;
 };
 

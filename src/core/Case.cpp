@@ -1,0 +1,748 @@
+// The case schema (every parameter declared once), the cross-field checks, and the
+// `granflow check` report. See Case.hpp.
+#include "core/Case.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <initializer_list>
+#include <ostream>
+#include <sstream>
+
+#include "core/Error.hpp"
+
+namespace gf {
+
+namespace {
+
+// Names as written in case files, indexed by the enumerators of CaseConfig: the schema's
+// choices and the string -> enum conversion both come from these, so they cannot drift.
+const std::vector<std::string> kDtModes{"adaptive", "fixed"};
+const std::vector<std::string> kShapes{"none", "rectangle", "layer", "circle", "zalesak"};
+const std::vector<std::string> kPrescribed{"none", "rotation", "single_vortex"};
+const std::vector<std::string> kWalls{"free_slip", "no_slip", "navier"};
+const std::vector<std::string> kProbeFields{"phi", "rho", "u", "v", "speed", "p", "eta"};
+const std::vector<std::string> kSides{"left", "right", "bottom", "top"};
+
+// Counts are stored as int; these bounds keep them (and nx * ny) far from overflow.
+constexpr double kMaxCellsPerSide = 100000;
+
+template <class E>
+E enum_of(const std::vector<std::string>& names, const std::string& s) {
+  const auto it = std::find(names.begin(), names.end(), s);
+  // The registry has already checked s against the same list.
+  return static_cast<E>(it == names.end() ? 0 : it - names.begin());
+}
+
+Range closed(double lo, double hi) {
+  Range r = Range::ge(lo);
+  r.hi = hi;
+  return r;
+}
+
+// Compact number for reports: 4 significant digits.
+std::string g4(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+std::string probe_name_rule(const std::string& s) {
+  const bool ok = !s.empty() && std::all_of(s.begin(), s.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
+  });
+  return ok ? "" : "must be made of letters, digits, _ and - only ([A-Za-z0-9_-]+)";
+}
+
+}  // namespace
+
+const char* to_string(CaseConfig::DtMode v) { return kDtModes[static_cast<int>(v)].c_str(); }
+const char* to_string(CaseConfig::Shape v) { return kShapes[static_cast<int>(v)].c_str(); }
+const char* to_string(CaseConfig::Prescribed v) { return kPrescribed[static_cast<int>(v)].c_str(); }
+const char* to_string(CaseConfig::Wall v) { return kWalls[static_cast<int>(v)].c_str(); }
+const char* to_string(CaseConfig::ProbeField v) {
+  return kProbeFields[static_cast<int>(v)].c_str();
+}
+const char* to_string(CaseConfig::Side v) { return kSides[static_cast<int>(v)].c_str(); }
+
+bool CaseConfig::operator==(const CaseConfig& o) const {
+  return title == o.title && domain == o.domain && nx == o.nx && ny == o.ny && hx == o.hx &&
+         hy == o.hy && time == o.time && gravity == o.gravity && granular == o.granular &&
+         air == o.air && levelset == o.levelset && initial == o.initial && flow == o.flow &&
+         walls == o.walls && output == o.output && solver == o.solver && probes == o.probes;
+}
+
+// ------------------------------------------------------------------------------------------
+// The schema: the one place where each parameter is declared. Defaults are case A of the
+// paper (section 4.1: column 0.20 x 0.14 m in a 0.8 x 0.2 m box, rho_s = 1550, eta_0 = 0.5).
+// ------------------------------------------------------------------------------------------
+
+Params case_params() {
+  Params p;
+  p.add_string("title", "granflow case",
+               "One line saying what this case is; copied to the output.");
+
+  p.add_real("domain.Lx", "m", 0.8, Range::gt(0),
+             "Domain length: Omega = (0, Lx) x (0, Ly); x = 0 is the back wall.");
+  p.add_real("domain.Ly", "m", 0.2, Range::gt(0), "Domain height; y = 0 is the bottom.");
+
+  p.add_int("grid.n", "cells", 64, closed(8, kMaxCellsPerSide), "Number of cells in y (ny).");
+  p.add_int("grid.nx", "cells", 0, closed(8, kMaxCellsPerSide).or_zero(),
+            "Number of cells in x; 0 = round(Lx/Ly * n), i.e. (near) square cells.");
+
+  p.add_real("time.t_end", "s", 1.0, Range::gt(0), "Simulated end time.");
+  p.add_enum("time.dt_mode", "adaptive", kDtModes,
+             "adaptive: dt = cfl h / max|u| every step, within [dt_min, dt_max]; "
+             "fixed: the same dt every step.");
+  p.add_real("time.dt", "s", 0.0, Range::ge(0),
+             "The fixed step (dt_mode = fixed) or the first step (adaptive); 0 = automatic: "
+             "cfl h / U with the velocity scale U of `granflow check`, capped by dt_max.");
+  p.add_real("time.cfl", "", 0.5, Range::open_closed(0, 1),
+             "CFL number of the adaptive step (and of the automatic first step).");
+  p.add_real("time.dt_max", "s", 1e-3, Range::gt(0), "Largest adaptive time step.");
+  p.add_real("time.dt_min", "s", 1e-9, Range::gt(0),
+             "An adaptive step below this stops the run as failed (a collapsing dt means "
+             "the flow is blowing up).");
+  p.add_int("time.max_steps", "steps", 0, Range::ge(0),
+            "Stop after this many steps; 0 = unlimited.");
+
+  p.add_real2("physics.gravity", "m/s^2", {0.0, -9.81}, Range::any(), "Gravity (gx, gy).");
+
+  p.add_real("phase.granular.rho", "kg/m^3", 1550, Range::gt(0),
+             "Density rho_s of the granular phase (bulk: grain density x volume fraction).");
+  p.add_real("phase.granular.eta", "Pa s", 0.5, Range::gt(0),
+             "Viscosity eta_0 of the granular phase.");
+  p.add_real("phase.air.rho", "kg/m^3", 1.2, Range::gt(0), "Density rho_f of the air.");
+  p.add_real("phase.air.eta", "Pa s", 1.8e-5, Range::gt(0), "Viscosity eta_f of the air.");
+
+  p.add_bool("levelset.enabled", true,
+             "Two phases separated by the level set phi (< 0 granular, > 0 air). false: a "
+             "single phase, phi ignored, the whole domain is the granular (heavy) fluid, "
+             "e.g. a lid-driven cavity.");
+  p.add_real("levelset.eps_cells", "cells", 1.5, Range::open_closed(0, 5),
+             "Half-width eps of the smoothed Heaviside H_eps (section 3.1, eq. 25), in cells: "
+             "eps = eps_cells h.");
+  p.add_int("levelset.redistance_every", "steps", 5, closed(0, 1e6),
+            "Redistance phi every this many steps; 0 = never.");
+  p.add_int("levelset.redistance_iters", "", 10, closed(1, 1000),
+            "Pseudo-time iterations per redistancing.");
+  p.add_real("levelset.redistance_cfl", "", 0.5, Range::open_closed(0, 1),
+             "CFL number of the redistancing pseudo-time steps.");
+
+  p.add_enum("initial.shape", "rectangle", kShapes,
+             "Initial granular region (phi < 0): none; rectangle [x0, x1] x [y0, y1] (the "
+             "column); layer 0 <= y <= height; circle (cx, cy, radius); zalesak: the circle "
+             "with a vertical slot slot_width wide cut slot_depth up from its bottom, "
+             "centred on cx (Zalesak's disc).");
+  p.add_real("initial.x0", "m", 0.0, Range::any(), "rectangle: left edge.");
+  p.add_real("initial.x1", "m", 0.2, Range::any(), "rectangle: right edge (the gate).");
+  p.add_real("initial.y0", "m", 0.0, Range::any(), "rectangle: bottom edge.");
+  p.add_real("initial.y1", "m", 0.14, Range::any(), "rectangle: top edge (column height).");
+  p.add_real("initial.height", "m", 0.1, Range::gt(0), "layer: thickness of the layer.");
+  p.add_real("initial.cx", "m", 0.5, Range::any(), "circle, zalesak: centre x.");
+  p.add_real("initial.cy", "m", 0.75, Range::any(), "circle, zalesak: centre y.");
+  p.add_real("initial.radius", "m", 0.15, Range::gt(0), "circle, zalesak: radius.");
+  p.add_real("initial.slot_width", "m", 0.05, Range::gt(0), "zalesak: slot width.");
+  p.add_real("initial.slot_depth", "m", 0.25, Range::gt(0),
+             "zalesak: slot depth, from the bottom of the disc.");
+
+  p.add_enum("flow.prescribed", "none", kPrescribed,
+             "none: solve the momentum equations. Otherwise a level-set-only test with a "
+             "prescribed velocity: rotation (solid body, omega about (cx, cy)); "
+             "single_vortex (LeVeque's vortex, reversed at t = period/2, back at t = period).");
+  p.add_real("flow.omega", "rad/s", 1.0, Range::any(),
+             "rotation: angular velocity (counter-clockwise > 0).");
+  p.add_real("flow.cx", "m", 0.5, Range::any(), "rotation: centre x.");
+  p.add_real("flow.cy", "m", 0.5, Range::any(), "rotation: centre y.");
+  p.add_real("flow.period", "s", 8.0, Range::gt(0), "single_vortex: period T.");
+
+  for (const auto& side : kSides) {
+    // The back wall (left) and the bottom are rough in the paper's column collapses: Navier
+    // slip with eta_b = 1 (eq. 24); the open side and the top only bound the air.
+    const bool rough = side == "left" || side == "bottom";
+    const std::string b = "boundary." + side + ".";
+    p.add_enum(b + "type", rough ? "navier" : "free_slip", kWalls,
+               "Tangential condition on the " + side +
+                   " wall (the normal velocity is 0): "
+                   "free_slip (eq. 21), no_slip, or navier slip (eq. 24).");
+    p.add_real(b + "eta_b", "Pa s/m", 1.0, Range::ge(0),
+               "navier: slip coefficient eta_b of eq. 24 (0 = free slip, large = no slip).");
+    p.add_real(b + "velocity", "m/s", 0.0, Range::any(),
+               "Tangential wall velocity (no_slip, navier), e.g. a cavity lid; along +x on "
+               "bottom/top, +y on left/right.");
+  }
+
+  p.add_real("output.interval", "s", 0.01, Range::gt(0),
+             "Simulated time between diagnostics and probe samples.");
+  p.add_real("output.vtk_interval", "s", 0.05, Range::ge(0),
+             "Simulated time between VTK snapshots; 0 = no VTK.");
+  p.add_real("output.progress_interval", "s", 2.0, Range::ge(0),
+             "Wall-clock time between progress lines; 0 = none.");
+
+  p.add_real("solver.pressure_rtol", "", 1e-10, Range::open(0, 1),
+             "Relative residual tolerance of the pressure solve (eq. 32).");
+  p.add_real("solver.viscous_rtol", "", 1e-10, Range::open(0, 1),
+             "Relative residual tolerance of the viscous solve (eq. 31).");
+  p.add_string("solver.petsc_options", "",
+               "Extra PETSc options, e.g. \"-pres_pc_type gamg\"; applied before the command "
+               "line's, which therefore win.");
+
+  Params probe;
+  probe.add_string("name", std::nullopt, "Probe name, unique; used in output file names.",
+                   probe_name_rule, "[A-Za-z0-9_-]+");
+  probe.add_real("x0", "m", std::nullopt, Range::any(), "Segment start, x.");
+  probe.add_real("y0", "m", std::nullopt, Range::any(), "Segment start, y.");
+  probe.add_real("x1", "m", std::nullopt, Range::any(), "Segment end, x.");
+  probe.add_real("y1", "m", std::nullopt, Range::any(), "Segment end, y.");
+  probe.add_int("points", "", 101, closed(2, 1e6),
+                "Samples along the segment, both ends included.");
+  probe.add_string_list("fields", {"phi", "u", "v", "p"}, kProbeFields, "Fields sampled.");
+  p.add_table_array("probe", std::move(probe),
+                    "A line probe: samples fields along a segment every output.interval.");
+  return p;
+}
+
+void print_case_help(std::ostream& os) {
+  os << "Case file parameters (TOML; units SI). Every key is optional unless marked "
+        "required; unknown keys are errors.\n\n";
+  case_params().print_help(os);
+}
+
+// ------------------------------------------------------------------------------------------
+// Registry -> CaseConfig, and the checks that involve more than one key.
+// ------------------------------------------------------------------------------------------
+
+namespace {
+
+using Shape = CaseConfig::Shape;
+using Prescribed = CaseConfig::Prescribed;
+
+// The top of the initial granular region, m (0 if there is none).
+double granular_top(const CaseConfig& c) {
+  if (!c.levelset.enabled) return c.domain.Ly;
+  switch (c.initial.shape) {
+    case Shape::Rectangle:
+      return c.initial.y1;
+    case Shape::Layer:
+      return c.initial.height;
+    case Shape::Circle:
+    case Shape::Zalesak:
+      return c.initial.cy + c.initial.radius;
+    case Shape::None:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+CaseConfig fill(const Params& p) {
+  CaseConfig c;
+  c.source = p.source();
+  c.title = p.get_string("title");
+  c.domain = {p.get_real("domain.Lx"), p.get_real("domain.Ly")};
+  c.ny = static_cast<int>(p.get_int("grid.n"));
+  c.nx = static_cast<int>(p.get_int("grid.nx"));
+  if (c.nx == 0) c.nx = static_cast<int>(std::lround(c.domain.Lx / c.domain.Ly * c.ny));
+  c.hx = c.domain.Lx / std::max(c.nx, 1);
+  c.hy = c.domain.Ly / c.ny;
+
+  c.time.t_end = p.get_real("time.t_end");
+  c.time.dt_mode = enum_of<CaseConfig::DtMode>(kDtModes, p.get_string("time.dt_mode"));
+  c.time.dt = p.get_real("time.dt");
+  c.time.cfl = p.get_real("time.cfl");
+  c.time.dt_max = p.get_real("time.dt_max");
+  c.time.dt_min = p.get_real("time.dt_min");
+  c.time.max_steps = p.get_int("time.max_steps");
+
+  c.gravity = p.get_real2("physics.gravity");
+  c.granular = {p.get_real("phase.granular.rho"), p.get_real("phase.granular.eta")};
+  c.air = {p.get_real("phase.air.rho"), p.get_real("phase.air.eta")};
+
+  c.levelset.enabled = p.get_bool("levelset.enabled");
+  c.levelset.eps_cells = p.get_real("levelset.eps_cells");
+  c.levelset.redistance_every = static_cast<int>(p.get_int("levelset.redistance_every"));
+  c.levelset.redistance_iters = static_cast<int>(p.get_int("levelset.redistance_iters"));
+  c.levelset.redistance_cfl = p.get_real("levelset.redistance_cfl");
+
+  auto& in = c.initial;
+  in.shape = enum_of<Shape>(kShapes, p.get_string("initial.shape"));
+  in.x0 = p.get_real("initial.x0");
+  in.x1 = p.get_real("initial.x1");
+  in.y0 = p.get_real("initial.y0");
+  in.y1 = p.get_real("initial.y1");
+  in.height = p.get_real("initial.height");
+  in.cx = p.get_real("initial.cx");
+  in.cy = p.get_real("initial.cy");
+  in.radius = p.get_real("initial.radius");
+  in.slot_width = p.get_real("initial.slot_width");
+  in.slot_depth = p.get_real("initial.slot_depth");
+
+  c.flow.prescribed = enum_of<Prescribed>(kPrescribed, p.get_string("flow.prescribed"));
+  c.flow.omega = p.get_real("flow.omega");
+  c.flow.cx = p.get_real("flow.cx");
+  c.flow.cy = p.get_real("flow.cy");
+  c.flow.period = p.get_real("flow.period");
+
+  for (std::size_t s = 0; s < kSides.size(); ++s) {
+    const std::string b = "boundary." + kSides[s] + ".";
+    c.walls[s].type = enum_of<CaseConfig::Wall>(kWalls, p.get_string(b + "type"));
+    c.walls[s].eta_b = p.get_real(b + "eta_b");
+    c.walls[s].velocity = p.get_real(b + "velocity");
+  }
+
+  c.output.interval = p.get_real("output.interval");
+  c.output.vtk_interval = p.get_real("output.vtk_interval");
+  c.output.progress_interval = p.get_real("output.progress_interval");
+
+  c.solver.pressure_rtol = p.get_real("solver.pressure_rtol");
+  c.solver.viscous_rtol = p.get_real("solver.viscous_rtol");
+  c.solver.petsc_options = p.get_string("solver.petsc_options");
+
+  for (const Params& item : p.items("probe")) {
+    CaseConfig::Probe pr;
+    pr.name = item.get_string("name");
+    pr.x0 = item.get_real("x0");
+    pr.y0 = item.get_real("y0");
+    pr.x1 = item.get_real("x1");
+    pr.y1 = item.get_real("y1");
+    pr.points = static_cast<int>(item.get_int("points"));
+    for (const auto& f : item.get_string_list("fields"))
+      pr.fields.push_back(enum_of<CaseConfig::ProbeField>(kProbeFields, f));
+    c.probes.push_back(std::move(pr));
+  }
+  return c;
+}
+
+// Cross-field validation. A check runs only if every key it reads holds an accepted value:
+// a rejected value was reported already and now holds its default, so checking it again
+// would only report a consequence of the first error. Nothing runs without a readable file.
+void check(const Params& p, CaseConfig& c, InputErrors& errors) {
+  const auto ok = [&](std::initializer_list<std::string> keys) {
+    if (!p.file_ok()) return false;
+    for (const auto& k : keys)
+      if (!p.valid(k)) return false;
+    return true;
+  };
+  const double Lx = c.domain.Lx, Ly = c.domain.Ly;
+  const auto m = [](double v) { return format_number(v) + " m"; };
+
+  // Grid.
+  if (ok({"grid.n", "grid.nx", "domain.Lx", "domain.Ly"}) && p.get_int("grid.nx") == 0) {
+    const double nx = std::round(Lx / Ly * c.ny);
+    if (nx < 8 || nx > kMaxCellsPerSide)
+      errors.add(p.where("grid.n") + ": gives grid.nx = round(Lx/Ly * n) = " + format_number(nx) +
+                 ", outside [8, " + format_number(kMaxCellsPerSide) +
+                 "]: change grid.n or set grid.nx");
+  }
+  if (ok({"grid.n", "grid.nx", "domain.Lx", "domain.Ly"}) && c.nx >= 8 &&
+      std::abs(c.hx / c.hy - 1.0) > 0.01)
+    c.warnings.push_back("cells are not square: hx = " + m(c.hx) + ", hy = " + m(c.hy));
+
+  // Time.
+  if (ok({"time.dt_min", "time.dt_max"}) && c.time.dt_min >= c.time.dt_max)
+    errors.add(p.where("time.dt_min") +
+               ": must be < time.dt_max = " + format_number(c.time.dt_max) + " (s)");
+  if (ok({"time.dt", "time.dt_min", "time.dt_max", "time.dt_mode"}) &&
+      c.time.dt_mode == CaseConfig::DtMode::Adaptive && c.time.dt > 0) {
+    if (c.time.dt > c.time.dt_max)
+      errors.add(p.where("time.dt") + ": the first adaptive step must be <= time.dt_max = " +
+                 format_number(c.time.dt_max) + " (s)");
+    else if (c.time.dt < c.time.dt_min)
+      errors.add(p.where("time.dt") + ": the first adaptive step must be >= time.dt_min = " +
+                 format_number(c.time.dt_min) + " (s)");
+  }
+  if (ok({"time.dt", "time.t_end"}) && c.time.dt > c.time.t_end)
+    c.warnings.push_back("time.dt = " + format_number(c.time.dt) + " s is longer than " +
+                         "time.t_end = " + format_number(c.time.t_end) + " s: a single step");
+  if (ok({"output.interval", "time.t_end"}) && c.output.interval > c.time.t_end)
+    c.warnings.push_back("output.interval = " + format_number(c.output.interval) +
+                         " s is longer than time.t_end: diagnostics only at the start and end");
+
+  // Level set, initial shape and prescribed flow must agree.
+  const bool momentum = c.flow.prescribed == Prescribed::None;
+  if (ok({"flow.prescribed", "levelset.enabled"}) && !momentum && !c.levelset.enabled)
+    errors.add(p.where("flow.prescribed") +
+               ": a prescribed flow only advects the level set: needs levelset.enabled = true");
+  if (ok({"initial.shape", "levelset.enabled"})) {
+    if (c.levelset.enabled && c.initial.shape == Shape::None)
+      errors.add(p.where("initial.shape") +
+                 ": levelset.enabled = true needs an initial granular region: one of "
+                 "rectangle, layer, circle, zalesak (or set levelset.enabled = false)");
+    if (!c.levelset.enabled && c.initial.shape != Shape::None)
+      errors.add(p.where("initial.shape") +
+                 ": levelset.enabled = false makes the whole domain granular, so the shape "
+                 "would be ignored: must be \"none\"");
+  }
+
+  // Initial geometry: inside the domain and, when momentum is solved, clear of the top wall
+  // by the smeared interface half-width plus one cell (otherwise the heavy phase would be in
+  // contact with the lid and the air above it would be under-resolved).
+  const bool geom_ok = ok({"initial.shape", "levelset.enabled", "flow.prescribed", "domain.Lx",
+                           "domain.Ly", "grid.n", "levelset.eps_cells"}) &&
+                       c.levelset.enabled;
+  const double top_margin = momentum ? (c.levelset.eps_cells + 1) * c.hy : 0.0;
+  const double y_top = Ly - top_margin;
+  const std::string y_top_text = momentum
+                                     ? "Ly - (levelset.eps_cells + 1) hy = " + m(y_top) +
+                                           " so the smeared interface does not touch the top wall"
+                                     : "domain.Ly = " + m(Ly);
+  const auto inside = [&](const char* key, double v, double lo, double hi, const char* what,
+                          const std::string& lo_text, const std::string& hi_text) {
+    if (v < lo)
+      errors.add(p.where(key) + ": " + what + " must lie inside the domain: must be >= " + lo_text);
+    else if (v > hi)
+      errors.add(p.where(key) + ": " + what + " must lie inside the domain: must be <= " + hi_text);
+  };
+  if (geom_ok && c.initial.shape == Shape::Rectangle &&
+      ok({"initial.x0", "initial.x1", "initial.y0", "initial.y1"})) {
+    const auto& in = c.initial;
+    inside("initial.x0", in.x0, 0, Lx, "the column", "0 m", "domain.Lx = " + m(Lx));
+    inside("initial.y0", in.y0, 0, Ly, "the column", "0 m", "domain.Ly = " + m(Ly));
+    if (in.x1 <= in.x0)
+      errors.add(p.where("initial.x1") + ": must be > initial.x0 = " + m(in.x0));
+    else
+      inside("initial.x1", in.x1, 0, Lx, "the column", "0 m", "domain.Lx = " + m(Lx));
+    if (in.y1 <= in.y0)
+      errors.add(p.where("initial.y1") + ": must be > initial.y0 = " + m(in.y0));
+    else if (in.y1 > Ly)
+      errors.add(p.where("initial.y1") +
+                 ": the column must lie inside the domain: must be <= domain.Ly = " + m(Ly));
+    else if (in.y1 > y_top)
+      errors.add(p.where("initial.y1") + ": the column touches the top: must be <= " + y_top_text);
+  }
+  if (geom_ok && c.initial.shape == Shape::Layer && ok({"initial.height"}) &&
+      c.initial.height > y_top)
+    errors.add(p.where("initial.height") + ": the layer " +
+               (c.initial.height > Ly ? "must lie inside the domain" : "touches the top") +
+               ": must be <= " + y_top_text);
+  const bool disc = c.initial.shape == Shape::Circle || c.initial.shape == Shape::Zalesak;
+  if (geom_ok && disc && ok({"initial.cx", "initial.cy", "initial.radius"})) {
+    const auto& in = c.initial;
+    const std::string r = ", initial.radius = " + format_number(in.radius);
+    if (in.cx - in.radius < 0)
+      errors.add(p.where("initial.cx") + r +
+                 ": the disc must lie inside the domain: needs cx - radius >= 0");
+    if (in.cx + in.radius > Lx)
+      errors.add(
+          p.where("initial.cx") + r +
+          ": the disc must lie inside the domain: needs cx + radius <= domain.Lx = " + m(Lx));
+    if (in.cy - in.radius < 0)
+      errors.add(p.where("initial.cy") + r +
+                 ": the disc must lie inside the domain: needs cy - radius >= 0");
+    if (in.cy + in.radius > y_top)
+      errors.add(p.where("initial.cy") + r + ": the disc " +
+                 (in.cy + in.radius > Ly ? "must lie inside the domain" : "touches the top") +
+                 ": needs cy + radius <= " + y_top_text);
+  }
+  if (geom_ok && c.initial.shape == Shape::Zalesak &&
+      ok({"initial.radius", "initial.slot_width", "initial.slot_depth"})) {
+    const auto& in = c.initial;
+    if (in.slot_width >= 2 * in.radius)
+      errors.add(p.where("initial.slot_width") +
+                 ": must be < 2 initial.radius = " + m(2 * in.radius));
+    if (in.slot_depth >= 2 * in.radius)
+      errors.add(p.where("initial.slot_depth") + ": must be < 2 initial.radius = " +
+                 m(2 * in.radius) + " (the slot would cut the disc in two)");
+    if (in.slot_width < 2 * std::min(c.hx, c.hy))
+      c.warnings.push_back("initial.slot_width = " + m(in.slot_width) +
+                           " spans fewer than 2 cells: the slot is not resolved");
+  }
+
+  // Solid-body rotation: the centre inside the domain, and the shape's orbit too.
+  if (geom_ok && c.flow.prescribed == Prescribed::Rotation &&
+      ok({"flow.cx", "flow.cy", "initial.x0", "initial.x1", "initial.y0", "initial.y1",
+          "initial.height", "initial.cx", "initial.cy", "initial.radius"})) {
+    const auto& f = c.flow;
+    if (f.cx <= 0 || f.cx >= Lx)
+      errors.add(p.where("flow.cx") +
+                 ": the rotation centre must lie inside the domain: must be in (0, " + m(Lx) + ")");
+    else if (f.cy <= 0 || f.cy >= Ly)
+      errors.add(p.where("flow.cy") +
+                 ": the rotation centre must lie inside the domain: must be in (0, " + m(Ly) + ")");
+    else {
+      const auto& in = c.initial;
+      double reach = 0;  // farthest point of the shape from the centre
+      const auto corner = [&](double x, double y) {
+        reach = std::max(reach, std::hypot(x - f.cx, y - f.cy));
+      };
+      if (in.shape == Shape::Rectangle) {
+        corner(in.x0, in.y0);
+        corner(in.x1, in.y0);
+        corner(in.x0, in.y1);
+        corner(in.x1, in.y1);
+      }
+      if (in.shape == Shape::Layer) {
+        corner(0, 0);
+        corner(Lx, 0);
+        corner(0, in.height);
+        corner(Lx, in.height);
+      }
+      if (disc) reach = std::hypot(in.cx - f.cx, in.cy - f.cy) + in.radius;
+      const double room = std::min({f.cx, Lx - f.cx, f.cy, Ly - f.cy});
+      if (reach > room)
+        errors.add(p.where("initial.shape") + ": rotating about (flow.cx, flow.cy) = (" +
+                   format_number(f.cx) + ", " + format_number(f.cy) +
+                   ") carries it out of the domain: it reaches " + m(reach) +
+                   " from the centre, the nearest wall is " + m(room) + " away");
+    }
+  }
+
+  // Walls. A free-slip wall carries no tangential stress, so a wall velocity would be
+  // silently ignored there.
+  for (std::size_t s = 0; s < kSides.size(); ++s) {
+    const std::string b = "boundary." + kSides[s] + ".";
+    if (ok({b + "type", b + "velocity"}) && c.walls[s].type == CaseConfig::Wall::FreeSlip &&
+        c.walls[s].velocity != 0)
+      errors.add(p.where(b + "velocity") +
+                 ": a free-slip wall cannot drive the flow: must be 0, "
+                 "or set " +
+                 b + "type = \"no_slip\" or \"navier\"");
+    if (p.is_set(b + "eta_b") && c.walls[s].type != CaseConfig::Wall::Navier)
+      c.warnings.push_back(b + "eta_b is set but " + b + "type = " + to_string(c.walls[s].type) +
+                           " does not use it");
+  }
+  if (ok({"physics.gravity"}) && momentum && c.gravity[0] == 0 && c.gravity[1] == 0 &&
+      std::all_of(c.walls.begin(), c.walls.end(), [](const auto& w) { return w.velocity == 0; }))
+    c.warnings.push_back("no gravity and no moving wall: nothing drives the flow");
+
+  // Keys given for a shape or a flow that does not use them: legal, but usually a slip.
+  const auto unused = [&](const std::vector<std::string>& keys,
+                          const std::vector<std::string>& used, const std::string& chooser,
+                          const std::string& choice) {
+    for (const auto& k : keys)
+      if (p.is_set(k) && std::find(used.begin(), used.end(), k) == used.end())
+        c.warnings.push_back(k + " is set but " + chooser + " = " + choice + " does not use it");
+  };
+  const std::vector<std::string> shape_keys{
+      "initial.x0", "initial.x1", "initial.y0",     "initial.y1",         "initial.height",
+      "initial.cx", "initial.cy", "initial.radius", "initial.slot_width", "initial.slot_depth"};
+  std::vector<std::string> shape_used;
+  switch (c.initial.shape) {
+    case Shape::Rectangle:
+      shape_used = {"initial.x0", "initial.x1", "initial.y0", "initial.y1"};
+      break;
+    case Shape::Layer:
+      shape_used = {"initial.height"};
+      break;
+    case Shape::Circle:
+      shape_used = {"initial.cx", "initial.cy", "initial.radius"};
+      break;
+    case Shape::Zalesak:
+      shape_used = {"initial.cx", "initial.cy", "initial.radius", "initial.slot_width",
+                    "initial.slot_depth"};
+      break;
+    case Shape::None:
+      break;
+  }
+  unused(shape_keys, shape_used, "initial.shape", to_string(c.initial.shape));
+  std::vector<std::string> flow_used;
+  if (c.flow.prescribed == Prescribed::Rotation) flow_used = {"flow.omega", "flow.cx", "flow.cy"};
+  if (c.flow.prescribed == Prescribed::SingleVortex) flow_used = {"flow.period"};
+  unused({"flow.omega", "flow.cx", "flow.cy", "flow.period"}, flow_used, "flow.prescribed",
+         to_string(c.flow.prescribed));
+
+  // Probes: unique names, segments of non-zero length inside the closed domain.
+  const auto& items = p.items("probe");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const Params& it = items[i];
+    const CaseConfig::Probe& pr = c.probes[i];
+    if (it.valid("name"))
+      for (std::size_t j = 0; j < i; ++j)
+        if (items[j].valid("name") && c.probes[j].name == pr.name) {
+          errors.add(it.where("name") + ": probe names must be unique: already used by probe[" +
+                     std::to_string(j + 1) + "]");
+          break;
+        }
+    if (!ok({"domain.Lx", "domain.Ly"})) continue;
+    const std::pair<const char*, double> xs[] = {{"x0", pr.x0}, {"x1", pr.x1}};
+    const std::pair<const char*, double> ys[] = {{"y0", pr.y0}, {"y1", pr.y1}};
+    bool all_ok = true;
+    for (const auto& [k, v] : xs)
+      if (it.valid(k) && (v < 0 || v > Lx)) {
+        errors.add(it.where(k) +
+                   ": the probe must lie inside the domain: must be in [0, domain.Lx = " +
+                   format_number(Lx) + "] (m)");
+        all_ok = false;
+      }
+    for (const auto& [k, v] : ys)
+      if (it.valid(k) && (v < 0 || v > Ly)) {
+        errors.add(it.where(k) +
+                   ": the probe must lie inside the domain: must be in [0, domain.Ly = " +
+                   format_number(Ly) + "] (m)");
+        all_ok = false;
+      }
+    if (all_ok && it.valid("x0") && it.valid("x1") && it.valid("y0") && it.valid("y1") &&
+        pr.x0 == pr.x1 && pr.y0 == pr.y1)
+      errors.add(it.where("x1") +
+                 ": the segment has zero length: (x1, y1) must differ from "
+                 "(x0, y0) = (" +
+                 format_number(pr.x0) + ", " + format_number(pr.y0) + ")");
+  }
+}
+
+CaseConfig resolve(Params& p, InputErrors& errors) {
+  CaseConfig c = fill(p);
+  check(p, c, errors);
+  if (p.get_int("grid.nx") == 0)
+    p.annotate("grid.nx", "resolved: nx = round(Lx/Ly * n) = " + std::to_string(c.nx));
+  c.resolved_toml = p.to_toml(
+      "granflow resolved case: every parameter with the value used (defaults filled in,\n"
+      "--set overrides applied). Units SI. Running this file gives the same case.");
+  return c;
+}
+
+}  // namespace
+
+CaseConfig load_case(const std::string& path, const std::vector<std::string>& overrides) {
+  Params p = case_params();
+  InputErrors errors;
+  p.load(path, overrides, errors);
+  CaseConfig c = resolve(p, errors);
+  errors.throw_if_any();
+  return c;
+}
+
+CaseConfig load_case_string(const std::string& text, const std::string& source,
+                            const std::vector<std::string>& overrides) {
+  Params p = case_params();
+  InputErrors errors;
+  p.load_string(text, source, overrides, errors);
+  CaseConfig c = resolve(p, errors);
+  errors.throw_if_any();
+  return c;
+}
+
+std::string write_resolved_case(const CaseConfig& c, const std::string& path) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) return path + ": cannot write the resolved case";
+  out << c.resolved_toml;
+  out.close();
+  return out ? "" : path + ": writing the resolved case failed";
+}
+
+// ------------------------------------------------------------------------------------------
+// Scales and the `granflow check` report.
+// ------------------------------------------------------------------------------------------
+
+namespace {
+
+struct Scale {
+  double U = 0;     // m/s
+  std::string why;  // how U was obtained
+};
+
+Scale velocity_scale_of(const CaseConfig& c) {
+  const double Lx = c.domain.Lx, Ly = c.domain.Ly;
+  if (c.flow.prescribed == Prescribed::Rotation) {
+    // The fastest point of a solid-body rotation is the domain corner farthest from the centre.
+    const double R = std::max(
+        {std::hypot(c.flow.cx, c.flow.cy), std::hypot(Lx - c.flow.cx, c.flow.cy),
+         std::hypot(c.flow.cx, Ly - c.flow.cy), std::hypot(Lx - c.flow.cx, Ly - c.flow.cy)});
+    return {std::abs(c.flow.omega) * R, "|omega| x the farthest corner distance " + g4(R) + " m"};
+  }
+  if (c.flow.prescribed == Prescribed::SingleVortex)
+    // LeVeque's field has peak speed 1 on the unit square; scaled to the domain: L per second.
+    return {std::max(Lx, Ly), "single vortex: max(Lx, Ly) / (1 s), the peak of the standard field"};
+  Scale s;
+  const double H = granular_top(c);
+  const double g = std::hypot(c.gravity[0], c.gravity[1]);
+  if (c.levelset.enabled && H > 0 && g > 0) {
+    s.U = std::sqrt(g * H);
+    s.why = "sqrt(|g| H), H = " + format_number(H) + " m, the top of the initial granular region";
+  }
+  for (std::size_t k = 0; k < c.walls.size(); ++k)
+    if (std::abs(c.walls[k].velocity) > s.U) {
+      s.U = std::abs(c.walls[k].velocity);
+      s.why = std::string("the ") + kSides[k] + " wall speed";
+    }
+  return s;
+}
+
+}  // namespace
+
+double velocity_scale(const CaseConfig& c) { return velocity_scale_of(c).U; }
+
+double initial_dt(const CaseConfig& c) {
+  if (c.time.dt > 0) return c.time.dt;
+  const double U = velocity_scale(c);
+  const double h = std::min(c.hx, c.hy);
+  return U > 0 ? std::min(c.time.cfl * h / U, c.time.dt_max) : c.time.dt_max;
+}
+
+std::string describe_case(const CaseConfig& c, int nranks) {
+  std::ostringstream os;
+  nranks = std::max(nranks, 1);
+  const long long cells = static_cast<long long>(c.nx) * c.ny;
+  const double h = std::min(c.hx, c.hy);
+  const Scale sc = velocity_scale_of(c);
+
+  os << "case       " << c.title << " (" << c.source << ")\n";
+  os << "grid       " << c.nx << " x " << c.ny << " = " << cells << " cells on "
+     << format_number(c.domain.Lx) << " m x " << format_number(c.domain.Ly) << " m; ";
+  if (std::abs(c.hx - c.hy) <= 1e-12 * h)
+    os << "h = " << format_number(c.hx) << " m\n";
+  else
+    os << "hx = " << format_number(c.hx) << " m, hy = " << format_number(c.hy) << " m\n";
+
+  os << "model      ";
+  if (c.flow.prescribed != Prescribed::None)
+    os << "level set advected by the prescribed " << to_string(c.flow.prescribed)
+       << " flow (momentum not solved)\n";
+  else if (c.levelset.enabled)
+    os << "two phases (level set), initial " << to_string(c.initial.shape) << "\n";
+  else
+    os << "single phase (the granular fluid fills the domain)\n";
+
+  os << "velocity   U = " << g4(sc.U) << " m/s"
+     << (sc.why.empty() ? " (nothing drives the flow)" : " = " + sc.why) << "\n";
+
+  const double dt = initial_dt(c);
+  os << "time step  first dt = " << g4(dt) << " s (" << to_string(c.time.dt_mode) << "): ";
+  if (c.time.dt > 0)
+    os << "time.dt as given\n";
+  else if (sc.U > 0 && c.time.cfl * h / sc.U > c.time.dt_max)
+    os << "cfl h / U = " << g4(c.time.cfl * h / sc.U) << " s, capped by time.dt_max\n";
+  else if (sc.U > 0)
+    os << "cfl h / U with cfl = " << g4(c.time.cfl) << "\n";
+  else
+    os << "time.dt_max (no velocity scale)\n";
+
+  std::vector<std::string> numbers;
+  if (c.levelset.enabled && c.flow.prescribed == Prescribed::None)
+    numbers.push_back("density ratio rho_gran/rho_air = " + g4(c.granular.rho / c.air.rho) +
+                      "; viscosity ratio eta_gran/eta_air = " + g4(c.granular.eta / c.air.eta));
+  if (c.flow.prescribed == Prescribed::None) {
+    const double H = granular_top(c);
+    if (c.levelset.enabled && H > 0)
+      numbers.push_back("Re = rho_gran U H / eta_gran = " +
+                        g4(c.granular.rho * sc.U * H / c.granular.eta) + " (H = " + g4(H) + " m)");
+    for (std::size_t k = 0; k < c.walls.size(); ++k)
+      if (c.walls[k].velocity != 0) {
+        // A moving wall of length L drives a cavity: Re = rho U L / eta with its speed.
+        const bool horizontal = k == CaseConfig::kBottom || k == CaseConfig::kTop;
+        const double L = horizontal ? c.domain.Lx : c.domain.Ly;
+        const double U = std::abs(c.walls[k].velocity);
+        numbers.push_back(
+            "cavity Re = rho U L / eta = " + g4(c.granular.rho * U * L / c.granular.eta) + " (" +
+            kSides[k] + " wall, U = " + g4(U) + " m/s, L = " + g4(L) + " m)");
+      }
+  }
+  for (std::size_t k = 0; k < numbers.size(); ++k)
+    os << (k == 0 ? "numbers    " : "           ") << numbers[k] << "\n";
+
+  double steps = std::ceil(c.time.t_end / dt - 1e-9);
+  const bool capped = c.time.max_steps > 0 && steps > static_cast<double>(c.time.max_steps);
+  if (capped) steps = static_cast<double>(c.time.max_steps);
+  const double seconds = static_cast<double>(cells) * steps * kSecondsPerCellStep / nranks;
+  os << "estimate   " << g4(steps) << " steps (" << (capped ? "time.max_steps" : "t_end / first dt")
+     << "); run time about " << g4(seconds) << " s (" << g4(seconds / 3600) << " h) on " << nranks
+     << (nranks == 1 ? " rank" : " ranks")
+     << "\n           (an estimate: " << g4(kSecondsPerCellStep)
+     << " s per cell per step on one core, perfect scaling assumed;\n"
+        "           adaptive steps and solver iterations change the real cost)\n";
+  for (const auto& w : c.warnings) os << "warning    " << w << "\n";
+  return os.str();
+}
+
+}  // namespace gf

@@ -1,0 +1,154 @@
+#pragma once
+// A case: every input of a run, read once from a TOML case file plus `--set` overrides,
+// validated (per key by the registry, across keys here), and stored in plain typed members
+// so that no solver ever looks a parameter up by name.
+//
+// The keys, units, defaults, ranges and help texts are declared in one place, case_params()
+// in Case.cpp; `granflow check --list` prints them (print_case_help).
+#include <array>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "core/Params.hpp"
+
+namespace gf {
+
+struct CaseConfig {
+  enum class DtMode { Adaptive, Fixed };
+  enum class Shape { None, Rectangle, Layer, Circle, Zalesak };
+  enum class Prescribed { None, Rotation, SingleVortex };
+  // Same enumerators, same order as gf::WallType in boundary/Boundary.hpp (core/ may not
+  // include a lower layer), so static_cast<WallType>(wall.type) is the conversion.
+  enum class Wall { FreeSlip, NoSlip, Navier };
+  enum class ProbeField { Phi, Rho, U, V, Speed, P, Eta };
+  enum Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
+
+  struct Domain {
+    double Lx = 0, Ly = 0;  // m
+    bool operator==(const Domain&) const = default;
+  };
+  struct Time {
+    double t_end = 0;  // s
+    DtMode dt_mode = DtMode::Adaptive;
+    double dt = 0;                  // s; fixed step, or the first adaptive step; 0 = automatic
+    double cfl = 0;                 // -
+    double dt_max = 0, dt_min = 0;  // s; below dt_min the run stops as failed
+    long long max_steps = 0;        // 0 = unlimited
+    bool operator==(const Time&) const = default;
+  };
+  struct Phase {
+    double rho = 0;  // kg/m^3
+    double eta = 0;  // Pa s
+    bool operator==(const Phase&) const = default;
+  };
+  struct LevelSet {
+    bool enabled = true;       // false: single phase, the whole domain is "granular"
+    double eps_cells = 0;      // smearing half-width of H_eps, in cells (eps = eps_cells h)
+    int redistance_every = 0;  // steps; 0 = never
+    int redistance_iters = 0;
+    double redistance_cfl = 0;  // pseudo-time CFL
+    bool operator==(const LevelSet&) const = default;
+  };
+  struct Initial {
+    Shape shape = Shape::None;
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // m, rectangle (the granular column)
+    double height = 0;                      // m, layer
+    double cx = 0, cy = 0, radius = 0;      // m, circle and Zalesak disc
+    double slot_width = 0, slot_depth = 0;  // m, Zalesak slot
+    bool operator==(const Initial&) const = default;
+  };
+  struct Flow {
+    Prescribed prescribed = Prescribed::None;  // != None: level set only, momentum not solved
+    double omega = 0;                          // rad/s, rotation
+    double cx = 0, cy = 0;                     // m, rotation centre
+    double period = 0;                         // s, single-vortex period T
+    bool operator==(const Flow&) const = default;
+  };
+  struct WallConfig {
+    Wall type = Wall::FreeSlip;
+    double eta_b = 0;     // Pa s/m, Navier coefficient (eq. 24)
+    double velocity = 0;  // m/s, tangential wall velocity (+x on bottom/top, +y on left/right)
+    bool operator==(const WallConfig&) const = default;
+  };
+  struct Output {
+    double interval = 0;           // s (simulated), diagnostics and probes
+    double vtk_interval = 0;       // s (simulated), 0 = no VTK
+    double progress_interval = 0;  // s (wall clock), 0 = no progress lines
+    bool operator==(const Output&) const = default;
+  };
+  struct Solver {
+    double pressure_rtol = 0, viscous_rtol = 0;
+    std::string petsc_options;  // applied before the command-line options
+    bool operator==(const Solver&) const = default;
+  };
+  struct Probe {
+    std::string name;
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // m, the segment sampled
+    int points = 0;                         // samples, end points included
+    std::vector<ProbeField> fields;
+    bool operator==(const Probe&) const = default;
+  };
+
+  std::string title;
+  Domain domain;
+  int nx = 0, ny = 0;     // cells; nx derived from grid.nx (0 = round(Lx/Ly ny))
+  double hx = 0, hy = 0;  // m, Lx/nx and Ly/ny
+  Time time;
+  std::array<double, 2> gravity{};  // m/s^2
+  Phase granular, air;
+  LevelSet levelset;
+  Initial initial;
+  Flow flow;
+  std::array<WallConfig, 4> walls{};  // indexed by Side
+  Output output;
+  Solver solver;
+  std::vector<Probe> probes;
+
+  // Not part of the physics (and not compared by operator==):
+  std::string source;                 // the case file as given
+  std::string resolved_toml;          // every key with its value, for the output folder
+  std::vector<std::string> warnings;  // legal but probably unintended settings
+
+  bool operator==(const CaseConfig& o) const;  // all physics/numerics members above
+};
+
+// Reads, validates and resolves a case. `overrides` are "key=value" strings (--set).
+// Throws InputError listing every problem found, one per line.
+CaseConfig load_case(const std::string& path, const std::vector<std::string>& overrides);
+// Same from TOML text in memory; `source` names it in messages.
+CaseConfig load_case_string(const std::string& text, const std::string& source,
+                            const std::vector<std::string>& overrides);
+
+// The declaration of every case parameter (the schema), with defaults loaded.
+Params case_params();
+// The `granflow check --list` listing.
+void print_case_help(std::ostream& os);
+
+// The report of `granflow check`: grid, h, first dt, dimensionless numbers, estimated steps
+// and run time on `nranks` ranks.
+std::string describe_case(const CaseConfig& c, int nranks);
+// Cost model of describe_case: wall seconds per cell per time step on one core. An estimate
+// (pressure and viscous solves dominate; measured orders of magnitude, not a promise).
+inline constexpr double kSecondsPerCellStep = 1.5e-6;
+
+// The velocity scale U of the case, m/s: |omega| R or the vortex peak for a prescribed flow;
+// otherwise the largest of sqrt(|g| H) (H = top of the initial granular region, two-phase
+// runs) and the wall speeds. 0 if nothing drives the flow.
+double velocity_scale(const CaseConfig& c);
+// The first time step, s: time.dt if > 0, else min(cfl min(hx, hy) / U, dt_max) (dt_max if
+// U = 0).
+double initial_dt(const CaseConfig& c);
+
+// Writes c.resolved_toml to `path`. Returns an error message, empty on success.
+[[nodiscard]] std::string write_resolved_case(const CaseConfig& c, const std::string& path);
+
+// Names as written in case files.
+const char* to_string(CaseConfig::DtMode v);
+const char* to_string(CaseConfig::Shape v);
+const char* to_string(CaseConfig::Prescribed v);
+const char* to_string(CaseConfig::Wall v);
+const char* to_string(CaseConfig::ProbeField v);
+const char* to_string(CaseConfig::Side v);
+
+}  // namespace gf

@@ -1,0 +1,110 @@
+#include "diagnostics/Diagnostics.hpp"
+
+#include <mpi.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/Error.hpp"
+#include "diagnostics/LocalArray.hpp"
+#include "levelset/Heaviside.hpp"
+
+namespace gf::diag {
+
+namespace {
+
+// Global maximum that is NaN on every rank if any rank saw a NaN. MPI_MAX on NaN is not
+// specified by MPI, so the NaN travels as a separate flag in the same reduction.
+double max_nan_aware(const Grid& g, double local_max, bool local_nan) {
+  double in[2] = {local_max, local_nan ? 1.0 : 0.0}, out[2] = {0, 0};
+  MPI_Allreduce(in, out, 2, MPI_DOUBLE, MPI_MAX, g.comm());
+  return out[1] > 0 ? std::numeric_limits<double>::quiet_NaN() : out[0];
+}
+
+// Folds one value into a running (max, saw-NaN) pair.
+struct MaxAcc {
+  double m = -std::numeric_limits<double>::infinity();
+  bool nan = false;
+  void add(double x) {
+    if (std::isnan(x)) nan = true;
+    else if (x > m) m = x;
+  }
+};
+
+}  // namespace
+
+double max_speed(const Grid& g, Vec vel) {
+  const Box& b = g.box();
+  LocalVelocity v(g, vel);
+  MaxAcc acc;
+  acc.m = 0.0;  // a speed is never negative; 0 also covers a rank that owns no cells
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      double uc, vc;
+      cell_centre_velocity(v, i, j, uc, vc);
+      acc.add(std::sqrt(uc * uc + vc * vc));
+    }
+  return max_nan_aware(g, acc.m, acc.nan);
+}
+
+double kinetic_energy(const Grid& g, Vec vel, Vec rho) {
+  const Box& b = g.box();
+  LocalVelocity v(g, vel);
+  LocalCells r(g.dm_cell(), rho);
+  double local = 0.0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double uu = 0.5 * (v[j][i].u * v[j][i].u + v[j][i + 1].u * v[j][i + 1].u);
+      const double vv = 0.5 * (v[j][i].v * v[j][i].v + v[j + 1][i].v * v[j + 1][i].v);
+      local += 0.5 * r[j][i] * (uu + vv);
+    }
+  return g.sum(local) * b.hx * b.hy;
+}
+
+double max_divergence(const Grid& g, Vec vel) {
+  const Box& b = g.box();
+  // The ghost exchange brings u_{i+1} / v_{j+1} owned by the right / upper neighbour; the
+  // wall faces i = nx / j = ny are not stored and come as zeros from fill_velocity_ghosts.
+  LocalVelocity v(g, vel);
+  MaxAcc acc;
+  acc.m = 0.0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double d =
+          (v[j][i + 1].u - v[j][i].u) / b.hx + (v[j + 1][i].v - v[j][i].v) / b.hy;
+      acc.add(std::fabs(d));
+    }
+  return max_nan_aware(g, acc.m, acc.nan);
+}
+
+double granular_volume(const Grid& g, Vec phi, double eps) {
+  const Box& b = g.box();
+  const PetscScalar** p = nullptr;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), phi, &p));
+  double local = 0.0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      // heaviside() maps NaN to the middle branch, which returns NaN: it is not lost.
+      local += 1.0 - levelset::heaviside(p[j][i], eps);
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &p));
+  return g.sum(local) * b.hx * b.hy;
+}
+
+double max_in_granular(const Grid& g, Vec field, Vec phi) {
+  const Box& b = g.box();
+  const PetscScalar **f = nullptr, **p = nullptr;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), field, &f));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), phi, &p));
+  MaxAcc acc;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i)
+      if (p[j][i] < 0) acc.add(f[j][i]);
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &p));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), field, &f));
+  const double m = max_nan_aware(g, acc.m, acc.nan);
+  // -inf means no rank found a granular cell (an empty or fully fluidised domain).
+  return m == -std::numeric_limits<double>::infinity() ? 0.0 : m;
+}
+
+}  // namespace gf::diag

@@ -1,0 +1,187 @@
+#include "io/Probes.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "core/Error.hpp"
+#include "diagnostics/LocalArray.hpp"
+#include "io/IoError.hpp"
+
+namespace gf::io {
+
+namespace {
+
+constexpr const char* kNames[] = {"phi", "rho", "u", "v", "speed", "p", "eta"};
+
+// Position along one axis of a field sampled at (k + off) h, k = 0..n-1: the lower sample
+// index k0 and the weight w of sample k0 + 1. Clamping s to [0, n-1] holds the value constant
+// between the outermost sample and the wall.
+struct Axis {
+  PetscInt k0;
+  double w;
+};
+Axis axis(double x, double h, double off, PetscInt n) {
+  const double s = std::clamp(x / h - off, 0.0, static_cast<double>(n - 1));
+  const PetscInt k0 = std::min(static_cast<PetscInt>(std::floor(s)), n - 2);
+  return {k0, s - k0};
+}
+
+template <class Get>
+double bilinear(const Axis& ax, const Axis& ay, Get f) {
+  const PetscInt i = ax.k0, j = ay.k0;
+  return (1 - ay.w) * ((1 - ax.w) * f(j, i) + ax.w * f(j, i + 1)) +
+         ay.w * ((1 - ax.w) * f(j + 1, i) + ax.w * f(j + 1, i + 1));
+}
+
+bool valid_name(const std::string& s) {
+  if (s.empty() || s == "." || s == "..") return false;
+  for (const char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+      return false;
+  return true;
+}
+
+// The coordinate clamped into [0, L], accepting a round-off overshoot (a case file giving
+// x1 = Lx as a sum of decimals), rejecting a real one.
+double inside(double x, double L, const std::string& what) {
+  const double tol = 1e-9 * L;
+  if (!std::isfinite(x) || x < -tol || x > L + tol)
+    throw InputError(what + " = " + std::to_string(x) + " is outside the domain [0, " +
+                     std::to_string(L) + "]");
+  return std::clamp(x, 0.0, L);
+}
+
+}  // namespace
+
+ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> specs) : g_(g) {
+  const Box& b = g.box();
+  std::set<std::string> names;
+  for (ProbeSpec& s : specs) {
+    const std::string where = "probe '" + s.name + "'";
+    if (!valid_name(s.name))
+      throw InputError(where + ": the name must be non-empty and use only letters, digits, "
+                               "'_', '-', '.' (it names the CSV file)");
+    if (!names.insert(s.name).second) throw InputError(where + ": name used twice");
+    if (s.points < 1) throw InputError(where + ": points must be >= 1");
+    if (s.fields.empty()) throw InputError(where + ": no fields");
+    Probe p;
+    std::set<std::string> seen;
+    for (const std::string& f : s.fields) {
+      const auto* it = std::find_if(std::begin(kNames), std::end(kNames),
+                                    [&](const char* n) { return f == n; });
+      if (it == std::end(kNames))
+        throw InputError(where + ": unknown field '" + f +
+                         "' (known: phi, rho, u, v, speed, p, eta)");
+      if (!seen.insert(f).second) throw InputError(where + ": field '" + f + "' listed twice");
+      p.q.push_back(static_cast<Quantity>(it - std::begin(kNames)));
+    }
+    const double x0 = inside(s.x0, b.Lx, where + " x0"), x1 = inside(s.x1, b.Lx, where + " x1");
+    const double y0 = inside(s.y0, b.Ly, where + " y0"), y1 = inside(s.y1, b.Ly, where + " y1");
+    for (int k = 0; k < s.points; ++k) {
+      const double a = s.points == 1 ? 0.0 : static_cast<double>(k) / (s.points - 1);
+      const bool last = s.points > 1 && k == s.points - 1;
+      p.x.push_back(last ? x1 : x0 + a * (x1 - x0));
+      p.y.push_back(last ? y1 : y0 + a * (y1 - y0));
+      // Owner: the rank owning the containing cell; a point on an inner cell edge goes to
+      // the cell on its right/top, one on the right/top wall to the last cell.
+      const PetscInt ic = std::clamp(static_cast<PetscInt>(std::floor(p.x.back() / b.hx)),
+                                     PetscInt(0), b.nx - 1);
+      const PetscInt jc = std::clamp(static_cast<PetscInt>(std::floor(p.y.back() / b.hy)),
+                                     PetscInt(0), b.ny - 1);
+      p.mine.push_back(ic >= b.xs && ic < b.xe() && jc >= b.ys && jc < b.ye());
+    }
+    for (const Quantity q : p.q) needs_[q] = true;
+    p.spec = std::move(s);
+    probes_.push_back(std::move(p));
+  }
+  // u and v are needed for speed; rho/phi/p/eta only if asked for.
+  if (needs_[kSpeed]) needs_[kU] = needs_[kV] = true;
+
+  for (const Probe& p : probes_) {
+    std::vector<std::string> cols = {"t", "x", "y"};
+    cols.insert(cols.end(), p.spec.fields.begin(), p.spec.fields.end());
+    csv_.emplace_back(dir + "/probes/" + p.spec.name + ".csv", std::move(cols), g.comm());
+  }
+}
+
+void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta) {
+  const Box& b = g_.box();
+  const Vec cellvec[kCount] = {phi, rho, nullptr, nullptr, nullptr, p, eta};
+  for (int q : {kPhi, kRho, kP, kEta})
+    if (needs_[q] && !cellvec[q])
+      throw std::invalid_argument(std::string("ProbeWriter::write: a probe samples '") +
+                                  kNames[q] + "' but its Vec is null");
+  if ((needs_[kU] || needs_[kV]) && !vel)
+    throw std::invalid_argument("ProbeWriter::write: a probe samples the velocity but vel is null");
+
+  // Ghosted local copies, only of what some probe samples (the exchange is collective, so
+  // this choice is the same on all ranks).
+  std::unique_ptr<diag::LocalCells> cells[kCount];
+  for (int q : {kPhi, kRho, kP, kEta})
+    if (needs_[q]) cells[q] = std::make_unique<diag::LocalCells>(g_.dm_cell(), cellvec[q]);
+  std::unique_ptr<diag::LocalVelocity> v;
+  if (needs_[kU] || needs_[kV]) v = std::make_unique<diag::LocalVelocity>(g_, vel);
+
+  // One buffer for all probes: -0.0 where this rank does not own the point (see the header).
+  std::size_t total = 0;
+  for (const Probe& pr : probes_) total += pr.x.size() * pr.q.size();
+  std::vector<double> mine(total, -0.0), all(g_.rank() == 0 ? total : 0);
+  std::size_t at = 0;
+  for (const Probe& pr : probes_)
+    for (std::size_t k = 0; k < pr.x.size(); ++k, at += pr.q.size()) {
+      if (!pr.mine[k]) continue;
+      const double x = pr.x[k], y = pr.y[k];
+      const Axis cx = axis(x, b.hx, 0.5, b.nx), cy = axis(y, b.hy, 0.5, b.ny);
+      double u = 0, w = 0;
+      if (v) {
+        const diag::LocalVelocity& vv = *v;
+        u = bilinear(axis(x, b.hx, 0.0, b.nx + 1), cy,
+                     [&](PetscInt j, PetscInt i) { return vv[j][i].u; });
+        w = bilinear(cx, axis(y, b.hy, 0.0, b.ny + 1),
+                     [&](PetscInt j, PetscInt i) { return vv[j][i].v; });
+      }
+      for (std::size_t m = 0; m < pr.q.size(); ++m) {
+        const Quantity q = pr.q[m];
+        double val;
+        if (q == kU) val = u;
+        else if (q == kV) val = w;
+        else if (q == kSpeed) val = std::sqrt(u * u + w * w);
+        else {
+          const diag::LocalCells& c = *cells[q];
+          val = bilinear(cx, cy, [&](PetscInt j, PetscInt i) { return c[j][i]; });
+        }
+        mine[at + m] = val;
+      }
+    }
+  if (total > 0)
+    MPI_Reduce(mine.data(), g_.rank() == 0 ? all.data() : nullptr, static_cast<int>(total),
+               MPI_DOUBLE, MPI_SUM, 0, g_.comm());
+
+  // Rank 0 writes (CsvWriter::row is a no-op elsewhere); a write error there is passed to
+  // every rank so that all stop together.
+  std::string err;
+  try {
+    at = 0;
+    std::vector<double> row;
+    for (std::size_t n = 0; n < probes_.size(); ++n) {
+      const Probe& pr = probes_[n];
+      for (std::size_t k = 0; k < pr.x.size(); ++k, at += pr.q.size()) {
+        row.assign({t, pr.x[k], pr.y[k]});
+        for (std::size_t m = 0; m < pr.q.size(); ++m)
+          row.push_back(g_.rank() == 0 ? all[at + m] : 0.0);
+        csv_[n].row(row);
+      }
+    }
+  } catch (const IoError& e) {
+    err = e.what();
+  }
+  raise_on_all_ranks(g_.comm(), err);
+}
+
+}  // namespace gf::io

@@ -1,0 +1,207 @@
+// Redistancing of the level set (section 3.1, ref [42]: C. Min, "On reinitializing level set
+// functions", J. Comput. Phys. 229 (2010) 2764-2772). The level set is brought back to a signed
+// distance by marching to steady state the Hamilton-Jacobi equation
+//   (R1)  d(phi)/dtau + sgn(phi0) (|grad phi| - 1) = 0,  phi(tau = 0) = phi0,
+// whose steady states are distance functions sharing phi0's zero level. Discretisation:
+//   (R2)  Godunov Hamiltonian: for sgn > 0, |phi_x|^2 = max((a^+)^2, (b^-)^2), and for sgn < 0,
+//         |phi_x|^2 = max((a^-)^2, (b^+)^2), with a = D-x phi, b = D+x phi (same in y);
+//   (R3)  ENO2 one-sided differences
+//         D+x phi_i = (phi_{i+1} - phi_i)/h - h/2 minmod(Dxx phi_i, Dxx phi_{i+1}),
+//         D-x phi_i = (phi_i - phi_{i-1})/h + h/2 minmod(Dxx phi_i, Dxx phi_{i-1});
+//   (R4)  subcell fix: where phi0_i phi0_{i+1} < 0 the interface lies at distance dx+ from x_i,
+//         found as the root of the quadratic ENO interpolant of phi0 (linear if its second
+//         difference vanishes), and
+//         D+x phi_i = (0 - phi_i)/dx+ - dx+/2 minmod(Dxx phi_i, Dxx phi_{i+1})
+//         (mirror for D-x), so that phi is pinned to 0 at the interface found from phi0;
+//   (R5)  TVD-RK2 (Heun) in pseudo time. Because dx+ may be much smaller than h, the pseudo-time
+//         step is local, dtau_ij = cfl min(h, dx+-, dy+-): only the steady state matters and (R4)
+//         is a relaxation with rate 1/dx+ that an explicit step must resolve.
+// Walls (no ghost points): a one-sided difference that would need a cell outside the domain is
+// dropped from (R2) (no information enters through a wall: the distance to an interface inside a
+// convex domain is carried by characteristics that leave through the walls), and the ENO
+// correction in (R3) is dropped (first order) when one of its second differences would need such
+// a cell.
+#include <algorithm>
+#include <cmath>
+
+#include "core/Error.hpp"
+#include "levelset/GhostGuard.hpp"
+#include "levelset/LevelSet.hpp"
+
+namespace gf::levelset {
+
+namespace {
+
+inline double minmod(double a, double b) {
+  if (a * b <= 0) return 0.0;
+  return std::abs(a) < std::abs(b) ? a : b;
+}
+
+// Undivided second difference of the line at cell k, if its three cells are in the domain.
+template <class At>
+inline bool d2(const At& at, PetscInt k, PetscInt n, double& out) {
+  if (k < 1 || k > n - 2) return false;
+  out = at(k - 1) - 2 * at(k) + at(k + 1);
+  return true;
+}
+
+// (R4) ENO minmod of the second differences at cells k1, k2; 0 (first order) near walls.
+template <class At>
+inline double eno_d2(const At& at, PetscInt k1, PetscInt k2, PetscInt n) {
+  double a, b;
+  if (!d2(at, k1, n, a) || !d2(at, k2, n, b)) return 0.0;
+  return minmod(a, b);
+}
+
+// Distance (m) from cell c to the interface towards its neighbour c + dir, given that phi0
+// changes sign between them: the root in (0, 1) of the quadratic ENO interpolant
+//   p(s) = p_c + (p_n - p_c) s + (D/2) s (s - 1),  D = minmod(Dxx phi0_c, Dxx phi0_n),
+// in units of h (Min 2010, sec. 3); linear interpolation where D vanishes or is unavailable.
+template <class At>
+inline double interface_distance(const At& at, PetscInt c, int dir, PetscInt n, double h) {
+  const double pc = at(c), pn = at(c + dir);
+  const double D = eno_d2(at, c, c + dir, n);
+  double s = pc / (pc - pn);  // linear
+  const double A = 0.5 * D, B = pn - pc - 0.5 * D, C = pc;
+  if (std::abs(A) > 1e-10 * (std::abs(pc) + std::abs(pn))) {
+    const double disc = std::max(B * B - 4 * A * C, 0.0);
+    const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+    // p(0) p(1) < 0, so exactly one root lies in (0, 1); take the candidate closest to it.
+    const double r1 = q / A, r2 = q != 0 ? C / q : r1;
+    auto off = [](double r) { return r < 0 ? -r : (r > 1 ? r - 1 : 0.0); };
+    s = off(r1) <= off(r2) ? r1 : r2;
+  }
+  s = std::clamp(s, 1e-12, 1.0);
+  return s * h;
+}
+
+// Index of owned cell (i, j) in the per-cell arrays.
+inline std::size_t cell_index(const Box& b, PetscInt i, PetscInt j) {
+  return static_cast<std::size_t>((j - b.ys) * b.xm + (i - b.xs));
+}
+
+// One direction's contribution |phi_x|^2 to (R2), with (R3)/(R4). at(k): phi along the line,
+// c: the cell, dm/dp: subcell distances towards c-1 / c+1 (< 0: no interface that way).
+template <class At>
+inline double godunov_1d(const At& at, PetscInt c, PetscInt n, double h, double dm, double dp,
+                         double sgn) {
+  const double pc = at(c);
+  double term = 0;
+  if (c >= 1) {  // a = D-x phi_c
+    const double m = eno_d2(at, c, c - 1, n);
+    const double a = dm > 0 ? pc / dm + 0.5 * dm * m / (h * h) : (pc - at(c - 1) + 0.5 * m) / h;
+    const double up = sgn > 0 ? std::max(a, 0.0) : std::min(a, 0.0);
+    term = std::max(term, up * up);
+  }
+  if (c <= n - 2) {  // b = D+x phi_c
+    const double m = eno_d2(at, c, c + 1, n);
+    const double bb = dp > 0 ? -pc / dp - 0.5 * dp * m / (h * h) : (at(c + 1) - pc - 0.5 * m) / h;
+    const double up = sgn > 0 ? std::min(bb, 0.0) : std::max(bb, 0.0);
+    term = std::max(term, up * up);
+  }
+  return term;
+}
+
+}  // namespace
+
+Redistancer::Redistancer(const Grid& g, int iterations, double cfl)
+    : g_(g), iters_(iterations), cfl_(cfl) {
+  if (iterations < 0) throw InputError("redistancing: iterations must be >= 0");
+  if (!(cfl > 0 && cfl <= 1)) throw InputError("redistancing: cfl must be in (0, 1]");
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &loc_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &stage_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &rhs_));
+  detail::poison_outside_ghosts(g.dm_cell(), loc_, g.box());
+  const std::size_t n = static_cast<std::size_t>(g.box().xm * g.box().ym);
+  for (auto* v : {&sgn_, &dtau_, &dxm_, &dxp_, &dym_, &dyp_}) v->assign(n, 0.0);
+}
+
+Redistancer::~Redistancer() {
+  VecDestroy(&rhs_);
+  VecDestroy(&stage_);
+  VecDestroy(&loc_);
+}
+
+void Redistancer::prepare(Vec phi0) {
+  const Box& b = g_.box();
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), phi0, INSERT_VALUES, loc_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), phi0, INSERT_VALUES, loc_));
+  const PetscScalar* const* p;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), loc_, &p));
+  const double h = std::min(b.hx, b.hy);
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const std::size_t k = cell_index(b, i, j);
+      const double pc = p[j][i];
+      sgn_[k] = pc > 0 ? 1.0 : (pc < 0 ? -1.0 : 0.0);
+      auto atx = [&](PetscInt m) { return p[j][m]; };
+      auto aty = [&](PetscInt m) { return p[m][i]; };
+      dxm_[k] = i >= 1 && pc * p[j][i - 1] < 0 ? interface_distance(atx, i, -1, b.nx, b.hx) : -1;
+      dxp_[k] = i <= b.nx - 2 && pc * p[j][i + 1] < 0 ? interface_distance(atx, i, 1, b.nx, b.hx) : -1;
+      dym_[k] = j >= 1 && pc * p[j - 1][i] < 0 ? interface_distance(aty, j, -1, b.ny, b.hy) : -1;
+      dyp_[k] = j <= b.ny - 2 && pc * p[j + 1][i] < 0 ? interface_distance(aty, j, 1, b.ny, b.hy) : -1;
+      double hl = h;
+      for (double d : {dxm_[k], dxp_[k], dym_[k], dyp_[k]})
+        if (d > 0) hl = std::min(hl, d);
+      dtau_[k] = cfl_ * hl;
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), loc_, &p));
+}
+
+void Redistancer::eval_rhs(Vec phi) {
+  const Box& b = g_.box();
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), phi, INSERT_VALUES, loc_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), phi, INSERT_VALUES, loc_));
+  const PetscScalar* const* p;
+  PetscScalar** r;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), loc_, &p));
+  GF_PETSC(DMDAVecGetArray(g_.dm_cell(), rhs_, &r));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const std::size_t k = cell_index(b, i, j);
+      const double s = sgn_[k];
+      if (s == 0) {  // a node exactly on the interface stays there
+        r[j][i] = 0;
+        continue;
+      }
+      auto atx = [&](PetscInt m) { return p[j][m]; };
+      auto aty = [&](PetscInt m) { return p[m][i]; };
+      const double gx = godunov_1d(atx, i, b.nx, b.hx, dxm_[k], dxp_[k], s);
+      const double gy = godunov_1d(aty, j, b.ny, b.hy, dym_[k], dyp_[k], s);
+      r[j][i] = -dtau_[k] * s * (std::sqrt(gx + gy) - 1.0);  // (R1) times the local step
+    }
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), rhs_, &r));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), loc_, &p));
+}
+
+int Redistancer::run(Vec phi) {
+  prepare(phi);
+  last_iters_ = 0;
+  for (int it = 0; it < iters_; ++it) {
+    // (R5) Heun: phi1 = phi + dtau L(phi); phi2 = phi1 + dtau L(phi1); phi <- (phi + phi2)/2.
+    eval_rhs(phi);
+    GF_PETSC(VecWAXPY(stage_, 1.0, rhs_, phi));
+    eval_rhs(stage_);
+    GF_PETSC(VecAXPY(stage_, 1.0, rhs_));
+    GF_PETSC(VecAXPY(stage_, -1.0, phi));  // phi2 - phi
+    GF_PETSC(VecAXPY(phi, 0.5, stage_));
+    ++last_iters_;
+    if (tol_ > 0) {  // max change over the band |phi| < band_ (what the properties see)
+      const double band = band_ > 0 ? band_ : 3 * std::max(g_.hx(), g_.hy());
+      const PetscScalar *p, *d;
+      PetscInt n;
+      GF_PETSC(VecGetLocalSize(phi, &n));
+      GF_PETSC(VecGetArrayRead(phi, &p));
+      GF_PETSC(VecGetArrayRead(stage_, &d));
+      double change = 0;
+      for (PetscInt k = 0; k < n; ++k)
+        if (std::abs(p[k]) < band) change = std::max(change, 0.5 * std::abs(d[k]));
+      GF_PETSC(VecRestoreArrayRead(stage_, &d));
+      GF_PETSC(VecRestoreArrayRead(phi, &p));
+      if (g_.max(change) < tol_) break;
+    }
+  }
+  return last_iters_;
+}
+
+}  // namespace gf::levelset

@@ -1,0 +1,536 @@
+// Case files: the parameter registry and the cross-field checks (core/Params, core/Case).
+// Each malformed case must fail with a message that names the file, the key, the value and
+// what is allowed; several problems must be reported at once; a resolved case must read back
+// to the same configuration.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/Case.hpp"
+#include "core/Error.hpp"
+
+namespace fs = std::filesystem;
+using gf::load_case;
+
+namespace {
+
+// A scratch folder per test process (ranks or parallel ctest runs must not collide),
+// removed when the tests end.
+const fs::path& scratch();
+
+class RemoveScratch : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(scratch(), ec);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kRemoveScratch =
+    ::testing::AddGlobalTestEnvironment(new RemoveScratch);
+
+const fs::path& scratch() {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / ("granflow_test_case_" + std::to_string(getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const fs::path p = scratch() / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+// The message of the InputError thrown by load_case, or "" (and a test failure) if none.
+std::string load_error(const std::string& path, const std::vector<std::string>& overrides = {}) {
+  try {
+    load_case(path, overrides);
+  } catch (const gf::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for " << path;
+  return "";
+}
+
+struct BadCase {
+  const char* name;
+  const char* toml;
+  std::vector<std::string> overrides;
+  std::vector<std::string> expect;  // substrings of the error message
+};
+
+const char* kProbe = R"(
+[[probe]]
+name = "gate"
+x0 = 0.2
+y0 = 0.0
+x1 = 0.2
+y1 = 0.2
+)";
+
+std::vector<BadCase> bad_cases() {
+  return {
+      {"syntax", "[time]\nt_end = = 1\n", {}, {"syntax.toml:2:", "TOML syntax error"}},
+      {"unknown_key",
+       "[phase.granular]\nrhoo = 1550\n",
+       {},
+       {"unknown_key.toml:2: phase.granular.rhoo = 1550: unknown key; did you mean "
+        "phase.granular.rho?"}},
+      {"unknown_section_key",
+       "[phase.granuler]\neta = 0.5\n",
+       {},
+       {"phase.granuler.eta = 0.5: unknown key; did you mean phase.granular.eta?"}},
+      {"key_in_wrong_section",
+       "[time]\nrho = 3\n",
+       {},
+       {"time.rho = 3: unknown key; did you mean phase.granular.rho or phase.air.rho?"}},
+      {"section_as_value",
+       "phase = 3\n",
+       {},
+       {"phase = 3: is a section of keys such as phase.granular.rho, not a value"}},
+      {"wrong_type",
+       "[time]\nt_end = \"long\"\n",
+       {},
+       {"time.t_end = \"long\": wrong type: expected a number (s), got a string"}},
+      {"int_as_float",
+       "[grid]\nn = 64.0\n",
+       {},
+       {"grid.n = 64.0: wrong type: expected an integer (cells), got a float"}},
+      {"negative_density",
+       "[phase.granular]\nrho = -5\n",
+       {},
+       {"negative_density.toml:2: phase.granular.rho = -5: must be > 0 (kg/m^3)"}},
+      {"zero_viscosity",
+       "[phase.air]\neta = 0.0\n",
+       {},
+       {"phase.air.eta = 0.0: must be > 0 (Pa s)"}},
+      {"cfl_above_one", "[time]\ncfl = 1.5\n", {}, {"time.cfl = 1.5: must be in (0, 1]"}},
+      {"grid_too_coarse", "[grid]\nn = 4\n", {}, {"grid.n = 4: must be in [8, 100000] (cells)"}},
+      {"nx_below_8", "[grid]\nnx = 5\n", {}, {"grid.nx = 5: must be 0 or in [8, 100000] (cells)"}},
+      {"bad_enum",
+       "[boundary.left]\ntype = \"navir\"\n",
+       {},
+       {"boundary.left.type = \"navir\": must be one of free_slip, no_slip, navier; did you "
+        "mean navier?"}},
+      {"gravity_one_component",
+       "[physics]\ngravity = [0.0]\n",
+       {},
+       {"physics.gravity = [0.0]: wrong type: expected an array of 2 numbers (m/s^2), got an "
+        "array of 1 element"}},
+      {"gravity_string_component",
+       "[physics]\ngravity = [0.0, \"down\"]\n",
+       {},
+       {"physics.gravity = [0.0, \"down\"]: wrong type: expected an array of 2 numbers "
+        "(m/s^2), but element 2 is a string"}},
+      {"column_outside",
+       "[initial]\nx1 = 0.9\n",
+       {},
+       {"initial.x1 = 0.9: the column must lie inside the domain: must be <= domain.Lx = "
+        "0.8 m"}},
+      {"column_touches_top",
+       "[initial]\ny1 = 0.2\n",
+       {},
+       {"initial.y1 = 0.2: the column touches the top: must be <= Ly - (levelset.eps_cells + "
+        "1) hy"}},
+      {"column_inverted",
+       "[initial]\nx0 = 0.3\n",
+       {},
+       {"initial.x1 = 0.2 (default): must be > initial.x0 = 0.3 m"}},
+      {"dt_min_above_dt_max",
+       "[time]\ndt_min = 0.01\n",
+       {},
+       {"time.dt_min = 0.01: must be < time.dt_max = 0.001 (s)"}},
+      {"moving_free_slip_wall",
+       "[boundary.top]\nvelocity = 1.0\n",
+       {},
+       {"boundary.top.velocity = 1: a free-slip wall cannot drive the flow"}},
+      {"single_phase_with_shape",
+       "[levelset]\nenabled = false\n",
+       {},
+       {"initial.shape = \"rectangle\" (default): levelset.enabled = false makes the whole "
+        "domain granular",
+        "must be \"none\""}},
+      {"derived_nx_too_small",
+       "[domain]\nLx = 0.01\n",
+       {},
+       {"grid.n = 64 (default): gives grid.nx = round(Lx/Ly * n) = 3, outside [8, 100000]"}},
+      {"zalesak_slot_too_deep",
+       "[domain]\nLx = 1.0\nLy = 1.0\n[initial]\nshape = \"zalesak\"\nslot_depth = 0.4\n"
+       "[flow]\nprescribed = \"rotation\"\n",
+       {},
+       {"initial.slot_depth = 0.4: must be < 2 initial.radius = 0.3 m"}},
+      {"rotation_leaves_domain",
+       "[domain]\nLx = 1.0\nLy = 1.0\n[initial]\nshape = \"circle\"\ncx = 0.5\ncy = 0.85\n"
+       "radius = 0.1\n[flow]\nprescribed = \"rotation\"\ncx = 0.5\ncy = 0.3\n",
+       {},
+       {"initial.shape = \"circle\": rotating about (flow.cx, flow.cy) = (0.5, 0.3) carries it "
+        "out of the domain"}},
+      {"probe_outside",
+       "[[probe]]\nname = \"a\"\nx0 = 0.1\ny0 = 0.0\nx1 = 0.9\ny1 = 0.0\n",
+       {},
+       {"probe_outside.toml:5: probe[1].x1 = 0.9: the probe must lie inside the domain: must "
+        "be in [0, domain.Lx = 0.8] (m)"}},
+      {"probe_unknown_field",
+       "[[probe]]\nname = \"a\"\nx0 = 0.1\ny0 = 0.0\nx1 = 0.5\ny1 = 0.0\n"
+       "fields = [\"phi\", \"vel\"]\n",
+       {},
+       {"probe[1].fields = [\"phi\", \"vel\"]: \"vel\" is not allowed: each must be one of phi, "
+        "rho, u, v, speed, p, eta; did you mean v?"}},
+      {"probe_duplicate_name",
+       "",
+       {},  // filled below: two copies of kProbe
+       {"probe[2].name = \"gate\": probe names must be unique: already used by probe[1]"}},
+      {"probe_missing_key",
+       "[[probe]]\nname = \"a\"\nx0 = 0.1\ny0 = 0.05\nx1 = 0.5\n",
+       {},
+       {"probe_missing_key.toml:1: probe[1].y1: missing: this key is required (m)"}},
+      {"probe_bad_name",
+       "[[probe]]\nname = \"a b\"\nx0 = 0.1\ny0 = 0.05\nx1 = 0.5\ny1 = 0.1\n",
+       {},
+       {"probe[1].name = \"a b\": must be made of letters, digits, _ and - only"}},
+      {"probe_unknown_key",
+       "[[probe]]\nname = \"a\"\nx0 = 0.1\ny0 = 0.05\nx1 = 0.5\ny1 = 0.1\npoint = 3\n",
+       {},
+       {"probe[1].point = 3: unknown key; did you mean probe[1].points?"}},
+      {"probe_zero_length",
+       "[[probe]]\nname = \"a\"\nx0 = 0.1\ny0 = 0.05\nx1 = 0.1\ny1 = 0.05\n",
+       {},
+       {"probe[1].x1 = 0.1: the segment has zero length"}},
+      {"set_unknown_key",
+       "",
+       {"phase.granular.rhoo=3"},
+       {"--set: phase.granular.rhoo = 3: unknown key; did you mean phase.granular.rho?"}},
+      {"set_bad_value",
+       "",
+       {"grid.n=abc"},
+       {"--set: grid.n = \"abc\": wrong type: expected an integer (cells), got a string"}},
+      {"set_out_of_range", "", {"time.cfl=2"}, {"--set: time.cfl = 2: must be in (0, 1]"}},
+      {"set_bad_enum",
+       "",
+       {"time.dt_mode=fixd"},
+       {"--set: time.dt_mode = \"fixd\": must be one of adaptive, fixed; did you mean fixed?"}},
+      {"set_no_equals", "", {"grid.n"}, {"--set grid.n: expected key=value"}},
+      {"set_probe",
+       "",
+       {"probe[1].x0=0.1"},
+       {"--set: probe[1].x0 = 0.1: [[probe]] entries can only be given in the case file"}},
+  };
+}
+
+}  // namespace
+
+TEST(CaseFile, MalformedCasesReportTheirSpecificError) {
+  const auto cases = bad_cases();
+  ASSERT_GE(cases.size(), 20u);
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    std::string text = c.toml;
+    if (std::string(c.name) == "probe_duplicate_name") text = std::string(kProbe) + kProbe;
+    const std::string path = write_file(std::string(c.name) + ".toml", text);
+    const std::string msg = load_error(path, c.overrides);
+    for (const auto& e : c.expect) EXPECT_NE(msg.find(e), std::string::npos) << "got:\n" << msg;
+  }
+}
+
+TEST(CaseFile, MissingFileIsReportedWithItsName) {
+  const std::string path = (scratch() / "no_such_case.toml").string();
+  const std::string msg = load_error(path);
+  EXPECT_NE(msg.find(path + ": cannot open the case file"), std::string::npos) << msg;
+}
+
+TEST(CaseFile, MissingFileStillChecksOverrides) {
+  const std::string msg =
+      load_error((scratch() / "absent.toml").string(), {"grid.n=2", "time.cfll=0.3"});
+  EXPECT_NE(msg.find("cannot open the case file"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--set: grid.n = 2: must be in [8, 100000] (cells)"), std::string::npos);
+  EXPECT_NE(msg.find("--set: time.cfll = 0.3: unknown key; did you mean time.cfl?"),
+            std::string::npos);
+}
+
+TEST(CaseFile, SeveralErrorsAreReportedAtOnceInFileOrder) {
+  const std::string path = write_file("many.toml", R"([time]
+cfl = 2.0
+[phase.granular]
+rho = -5
+rhoo = 3
+[initial]
+x1 = 0.9
+[[probe]]
+name = "p"
+x0 = 0.1
+y0 = 0.0
+x1 = 0.1
+y1 = 0.5
+fields = ["rho", "rho"]
+)");
+  const std::string msg = load_error(path, {"time.dt_mode=fixd"});
+  std::vector<std::string> lines;
+  std::istringstream is(msg);
+  for (std::string l; std::getline(is, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 7u) << msg;
+  EXPECT_NE(lines[0].find("many.toml:2: time.cfl = 2.0: must be in (0, 1]"), std::string::npos);
+  EXPECT_NE(lines[1].find("many.toml:4: phase.granular.rho = -5: must be > 0 (kg/m^3)"),
+            std::string::npos);
+  EXPECT_NE(lines[2].find("many.toml:5: phase.granular.rhoo = 3: unknown key"), std::string::npos);
+  EXPECT_NE(lines[3].find("many.toml:14: probe[1].fields = [\"rho\", \"rho\"]: \"rho\" is listed "
+                          "twice"),
+            std::string::npos);
+  EXPECT_NE(lines[4].find("--set: time.dt_mode = \"fixd\": must be one of"), std::string::npos);
+  // Cross-field errors come last; the rejected density does not cause follow-up errors.
+  EXPECT_NE(lines[5].find("many.toml:7: initial.x1 = 0.9: the column must lie inside"),
+            std::string::npos);
+  EXPECT_NE(lines[6].find("many.toml:13: probe[1].y1 = 0.5: the probe must lie inside the "
+                          "domain: must be in [0, domain.Ly = 0.2] (m)"),
+            std::string::npos);
+}
+
+TEST(CaseFile, DefaultsGiveThePapersCaseA) {
+  const auto c = load_case(write_file("empty.toml", ""), {});
+  EXPECT_EQ(c.nx, 256);
+  EXPECT_EQ(c.ny, 64);
+  EXPECT_DOUBLE_EQ(c.hx, 0.8 / 256);
+  EXPECT_DOUBLE_EQ(c.hy, 0.2 / 64);
+  EXPECT_EQ(c.initial.shape, gf::CaseConfig::Shape::Rectangle);
+  EXPECT_DOUBLE_EQ(c.initial.y1, 0.14);
+  EXPECT_DOUBLE_EQ(c.granular.rho, 1550);
+  EXPECT_DOUBLE_EQ(c.gravity[1], -9.81);
+  EXPECT_EQ(c.walls[gf::CaseConfig::kLeft].type, gf::CaseConfig::Wall::Navier);
+  EXPECT_EQ(c.walls[gf::CaseConfig::kBottom].type, gf::CaseConfig::Wall::Navier);
+  EXPECT_EQ(c.walls[gf::CaseConfig::kRight].type, gf::CaseConfig::Wall::FreeSlip);
+  EXPECT_EQ(c.walls[gf::CaseConfig::kTop].type, gf::CaseConfig::Wall::FreeSlip);
+  EXPECT_DOUBLE_EQ(c.walls[gf::CaseConfig::kLeft].eta_b, 1.0);
+  EXPECT_TRUE(c.probes.empty());
+  EXPECT_TRUE(c.warnings.empty());
+}
+
+TEST(CaseFile, SetGridNChangesTheDerivedNx) {
+  const std::string path = write_file("grid.toml", "[grid]\nn = 64\n");
+  const auto c64 = load_case(path, {});
+  EXPECT_EQ(c64.nx, 256);
+  const auto c128 = load_case(path, {"grid.n=128"});
+  EXPECT_EQ(c128.ny, 128);
+  EXPECT_EQ(c128.nx, 512);
+  EXPECT_DOUBLE_EQ(c128.hx, 0.8 / 512);
+  EXPECT_NE(c128.resolved_toml.find("resolved: nx = round(Lx/Ly * n) = 512"), std::string::npos);
+  // An explicit nx is kept.
+  EXPECT_EQ(load_case(path, {"grid.nx=100"}).nx, 100);
+}
+
+TEST(CaseFile, OverridesReplaceFileValuesAndTakeBareStrings) {
+  const std::string path = write_file("ovr.toml", "title = \"x\"\n[phase.granular]\nrho = -5\n");
+  // The override replaces the bad file value, so the file's -5 is never validated.
+  const auto c = load_case(
+      path, {"phase.granular.rho=2000", "initial.shape=layer", "title=a bare title",
+             "physics.gravity=[1, -9]", "levelset.enabled=true", "time.dt_mode=\"fixed\""});
+  EXPECT_DOUBLE_EQ(c.granular.rho, 2000);
+  EXPECT_EQ(c.initial.shape, gf::CaseConfig::Shape::Layer);
+  EXPECT_EQ(c.title, "a bare title");
+  EXPECT_EQ(c.gravity, (std::array<double, 2>{1.0, -9.0}));
+  EXPECT_EQ(c.time.dt_mode, gf::CaseConfig::DtMode::Fixed);
+  // A later --set of the same key wins.
+  EXPECT_EQ(load_case(path, {"phase.granular.rho=1", "phase.granular.rho=3"}).granular.rho, 3);
+}
+
+TEST(CaseFile, ResolvedCaseRoundTrips) {
+  const std::string path = write_file("good.toml", R"(
+title = "round trip: \"quotes\" and \\ backslash"
+[domain]
+Lx = 1.38
+Ly = 0.46
+[grid]
+n = 48
+[time]
+t_end = 0.3
+dt_mode = "fixed"
+dt = 5e-5
+[physics]
+gravity = [0.1, -9.81]
+[phase.granular]
+rho = 1450
+eta = 0.1
+[initial]
+x1 = 0.2
+y1 = 0.4
+[boundary.bottom]
+type = "navier"
+eta_b = 0.3
+[boundary.top]
+type = "no_slip"
+velocity = 0.25
+[solver]
+petsc_options = "-pres_pc_type gamg -pres_ksp_monitor"
+[[probe]]
+name = "gate"
+x0 = 0.2
+y0 = 0.0
+x1 = 0.2
+y1 = 0.46
+points = 50
+fields = ["phi", "speed", "eta"]
+[[probe]]
+name = "bottom-line_2"
+x0 = 0.0
+y0 = 0.01
+x1 = 1.38
+y1 = 0.01
+)");
+  const auto a = load_case(path, {"levelset.eps_cells=2", "output.interval=0.003"});
+  ASSERT_EQ(a.probes.size(), 2u);
+  EXPECT_EQ(a.probes[0].fields,
+            (std::vector<gf::CaseConfig::ProbeField>{gf::CaseConfig::ProbeField::Phi,
+                                                     gf::CaseConfig::ProbeField::Speed,
+                                                     gf::CaseConfig::ProbeField::Eta}));
+  EXPECT_EQ(a.probes[1].points, 101);
+  EXPECT_EQ(a.nx, 144);
+
+  const std::string resolved = (scratch() / "resolved.toml").string();
+  ASSERT_EQ(gf::write_resolved_case(a, resolved), "");
+  const auto b = load_case(resolved, {});
+  EXPECT_TRUE(a == b);
+  EXPECT_EQ(a.title, b.title);
+  EXPECT_EQ(a.resolved_toml, b.resolved_toml);  // resolving is a fixed point
+  // Units and help are in the comments.
+  EXPECT_NE(a.resolved_toml.find("# unit: kg/m^3 | allowed: > 0 | default: 1550"),
+            std::string::npos);
+  EXPECT_NE(a.resolved_toml.find("[[probe]]"), std::string::npos);
+}
+
+TEST(CaseFile, ResolvedCaseListsEveryDeclaredKey) {
+  const auto c = load_case(write_file("empty2.toml", ""), {});
+  const gf::Params schema = gf::case_params();
+  for (const auto& s : schema.specs()) {
+    const auto dot = s.key.rfind('.');
+    const std::string leaf = dot == std::string::npos ? s.key : s.key.substr(dot + 1);
+    EXPECT_NE(c.resolved_toml.find("\n" + leaf + " = "), std::string::npos) << s.key;
+  }
+  // No probes: the item keys are still documented.
+  EXPECT_NE(c.resolved_toml.find("#   fields: Fields sampled."), std::string::npos);
+}
+
+TEST(CaseFile, HelpListsEveryKeyWithUnitDefaultAndRange) {
+  std::ostringstream os;
+  gf::print_case_help(os);
+  const std::string help = os.str();
+  const gf::Params schema = gf::case_params();  // (a temporary would die before the loop)
+  for (const auto& s : schema.specs())
+    EXPECT_NE(help.find(s.key + "  ("), std::string::npos) << s.key;
+  EXPECT_NE(help.find("phase.granular.rho  (real, kg/m^3)  default: 1550; allowed: > 0"),
+            std::string::npos)
+      << help;
+  EXPECT_NE(help.find("probe[].fields  (string[])"), std::string::npos);
+  EXPECT_NE(help.find("time.dt_mode  (enum)  default: \"adaptive\"; allowed: one of adaptive, "
+                      "fixed"),
+            std::string::npos);
+}
+
+TEST(CaseFile, DescribeReportsGridStepAndEstimates) {
+  const auto c = load_case(write_file("desc.toml", ""), {});
+  const std::string d = gf::describe_case(c, 2);
+  EXPECT_NE(d.find("256 x 64 = 16384 cells"), std::string::npos) << d;
+  EXPECT_NE(d.find("h = 0.003125 m"), std::string::npos) << d;
+  // U = sqrt(9.81 * 0.14) = 1.172 m/s; cfl h / U = 1.333e-3 s > dt_max = 1e-3 s.
+  EXPECT_NE(d.find("U = 1.172 m/s"), std::string::npos) << d;
+  EXPECT_NE(d.find("first dt = 0.001 s"), std::string::npos) << d;
+  EXPECT_NE(d.find("capped by time.dt_max"), std::string::npos) << d;
+  EXPECT_NE(d.find("density ratio rho_gran/rho_air = 1292"), std::string::npos) << d;
+  EXPECT_NE(d.find("Re = rho_gran U H / eta_gran = 508.6"), std::string::npos) << d;
+  // 1000 steps x 16384 cells x 1.5e-6 s / 2 ranks = 12.29 s.
+  EXPECT_NE(d.find("1000 steps"), std::string::npos) << d;
+  EXPECT_NE(d.find("about 12.29 s"), std::string::npos) << d;
+  EXPECT_NE(d.find("estimate"), std::string::npos) << d;
+  EXPECT_DOUBLE_EQ(gf::initial_dt(c), 1e-3);
+}
+
+TEST(CaseFile, LidDrivenCavityIsSinglePhaseWithCavityReynolds) {
+  const auto c = load_case(write_file("cavity.toml", R"(
+[domain]
+Lx = 1.0
+Ly = 1.0
+[grid]
+n = 32
+[levelset]
+enabled = false
+[initial]
+shape = "none"
+[physics]
+gravity = [0.0, 0.0]
+[phase.granular]
+rho = 1.0
+eta = 0.01
+[boundary.top]
+type = "no_slip"
+velocity = 1.0
+)"),
+                           {});
+  EXPECT_EQ(c.nx, 32);
+  const std::string d = gf::describe_case(c, 1);
+  EXPECT_NE(d.find("single phase"), std::string::npos) << d;
+  EXPECT_NE(d.find("cavity Re = rho U L / eta = 100 (top wall"), std::string::npos) << d;
+  EXPECT_NE(d.find("U = 1 m/s"), std::string::npos) << d;
+  // 0.5 * (1/32) / 1 = 0.015625 s, capped by dt_max = 1e-3.
+  EXPECT_DOUBLE_EQ(gf::initial_dt(c), 1e-3);
+}
+
+TEST(CaseFile, UnusedShapeKeysGiveWarnings) {
+  const auto c = load_case(write_file("warn.toml", "[initial]\nradius = 0.05\n"), {});
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0], "initial.radius is set but initial.shape = rectangle does not use it");
+}
+
+TEST(CaseFile, ZalesakRotationIsAccepted) {
+  const auto c = load_case(write_file("zalesak.toml", R"(
+[domain]
+Lx = 1.0
+Ly = 1.0
+[grid]
+n = 100
+[time]
+t_end = 6.283185307179586
+[initial]
+shape = "zalesak"
+[flow]
+prescribed = "rotation"
+omega = 1.0
+)"),
+                           {});
+  EXPECT_EQ(c.flow.prescribed, gf::CaseConfig::Prescribed::Rotation);
+  EXPECT_DOUBLE_EQ(c.initial.cy, 0.75);
+  // U = omega * distance to the farthest corner = sqrt(0.5) m/s.
+  EXPECT_NEAR(gf::velocity_scale(c), std::sqrt(0.5), 1e-12);
+}
+
+TEST(Params, EditDistanceAndSuggestions) {
+  EXPECT_EQ(gf::edit_distance("rhoo", "rho"), 1u);
+  EXPECT_EQ(gf::edit_distance("eat", "eta"), 1u);  // a transposition costs 1
+  EXPECT_EQ(gf::closest_match("phase.granular.rhoo", {"phase.granular.rho", "phase.air.rho"}),
+            "phase.granular.rho");
+  EXPECT_EQ(gf::closest_match("completely_else", {"time.t_end"}), "");
+}
+
+TEST(Params, RangeDescriptions) {
+  EXPECT_EQ(gf::Range::gt(0).describe(), "> 0");
+  EXPECT_EQ(gf::Range::ge(8).or_zero().describe(), "0 or >= 8");
+  EXPECT_EQ(gf::Range::open_closed(0, 1).describe(), "in (0, 1]");
+  EXPECT_TRUE(gf::Range::ge(8).or_zero().contains(0));
+  EXPECT_FALSE(gf::Range::ge(8).or_zero().contains(3));
+  EXPECT_FALSE(gf::Range::open_closed(0, 1).contains(0));
+  EXPECT_TRUE(gf::Range::open_closed(0, 1).contains(1));
+}
+
+TEST(Params, DeclaringAKeyTwiceOrABadDefaultIsABug) {
+  gf::Params p;
+  p.add_real("a.b", "m", 1.0, gf::Range::gt(0), "x");
+  EXPECT_THROW(p.add_real("a.b", "m", 1.0, gf::Range::gt(0), "x"), std::logic_error);
+  EXPECT_THROW(p.add_real("a.c", "m", -1.0, gf::Range::gt(0), "x"), std::logic_error);
+  EXPECT_THROW(p.add_enum("a.d", "z", {"x", "y"}, "x"), std::logic_error);
+  EXPECT_THROW(p.get_int("a.b"), std::logic_error);
+  EXPECT_THROW(p.get_real("nope"), std::logic_error);
+}
