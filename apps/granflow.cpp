@@ -15,6 +15,7 @@
 #include "core/Error.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
+#include "io/IoError.hpp"
 #include "sim/Setup.hpp"
 #include "sim/Simulation.hpp"
 #include "stepper/Stepper.hpp"
@@ -136,6 +137,9 @@ int main(int argc, char** argv) {
   } catch (const gf::RunError& e) {
     std::cerr << "granflow: the run failed: " << e.what() << "\n";
     rc = gf::kExitRunFailure;
+  } catch (const gf::io::IoError& e) {
+    std::cerr << "granflow: cannot write output: " << e.what() << "\n";
+    rc = gf::kExitIo;
   } catch (const std::exception& e) {
     std::cerr << "granflow: error: " << e.what() << "\n";
     rc = gf::kExitInternal;
