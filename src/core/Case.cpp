@@ -25,6 +25,8 @@ const std::vector<std::string> kPrescribed{"none", "rotation", "single_vortex"};
 const std::vector<std::string> kWalls{"free_slip", "no_slip", "navier"};
 const std::vector<std::string> kProbeFields{"phi", "rho", "u", "v", "speed", "p", "eta"};
 const std::vector<std::string> kSides{"left", "right", "bottom", "top"};
+const std::vector<std::string> kYields{"none", "bingham", "dp", "hp"};
+const std::vector<std::string> kViscosities{"constant", "mu_i"};
 
 // Counts are stored as int; these bounds keep them (and nx * ny) far from overflow.
 constexpr double kMaxCellsPerSide = 100000;
@@ -39,6 +41,13 @@ E enum_of(const std::vector<std::string>& names, const std::string& s) {
 Range closed(double lo, double hi) {
   Range r = Range::ge(lo);
   r.hi = hi;
+  return r;
+}
+
+// lo <= x < hi
+Range closed_open(double lo, double hi) {
+  Range r = closed(lo, hi);
+  r.hi_open = true;
   return r;
 }
 
@@ -66,12 +75,15 @@ const char* to_string(CaseConfig::ProbeField v) {
   return kProbeFields[static_cast<int>(v)].c_str();
 }
 const char* to_string(CaseConfig::Side v) { return kSides[static_cast<int>(v)].c_str(); }
+const char* to_string(CaseConfig::Yield v) { return kYields[static_cast<int>(v)].c_str(); }
+const char* to_string(CaseConfig::Viscosity v) { return kViscosities[static_cast<int>(v)].c_str(); }
 
 bool CaseConfig::operator==(const CaseConfig& o) const {
   return title == o.title && domain == o.domain && nx == o.nx && ny == o.ny && hx == o.hx &&
          hy == o.hy && time == o.time && gravity == o.gravity && granular == o.granular &&
-         air == o.air && levelset == o.levelset && initial == o.initial && flow == o.flow &&
-         walls == o.walls && output == o.output && solver == o.solver && probes == o.probes;
+         air == o.air && rheology == o.rheology && levelset == o.levelset && initial == o.initial &&
+         flow == o.flow && walls == o.walls && output == o.output && solver == o.solver &&
+         probes == o.probes;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -116,6 +128,45 @@ Params case_params() {
              "Viscosity eta_0 of the granular phase.");
   p.add_real("phase.air.rho", "kg/m^3", 1.2, Range::gt(0), "Density rho_f of the air.");
   p.add_real("phase.air.eta", "Pa s", 1.8e-5, Range::gt(0), "Viscosity eta_f of the air.");
+
+  // Viscoplastic rheology of the granular phase (sections 2.1-2.2, 3.2-3.3). The air is
+  // always Newtonian (kappa = 0, eq. 18).
+  p.add_enum("rheology.yield", "none", kYields,
+             "Yield stress kappa of the granular phase: none = Newtonian granular phase "
+             "(eta = phase.granular.eta); bingham = constant yield stress tau_y; dp = "
+             "Drucker-Prager kappa = tan(alpha) p^+ with the current pressure (eq. 19); hp = "
+             "kappa = tan(alpha) p_hyd, the weight of the granular column above the point "
+             "(eq. 15).");
+  p.add_real("rheology.tau_y", "Pa", 0.0, Range::ge(0), "bingham: yield stress tau_y.");
+  p.add_real("rheology.friction_angle", "degrees", 25.5, Range::open(0, 90),
+             "Internal friction angle alpha, mu_s = tan(alpha); used by dp, hp and mu_i.");
+  p.add_enum("rheology.viscosity", "constant", kViscosities,
+             "Viscosity eta_s of the granular phase: constant = phase.granular.eta; mu_i = "
+             "eq. 11, eta = (mu_inf - tan alpha) p / (2|D u| + I0 sqrt(p) / (d sqrt(rho_s))), "
+             "clipped to [eta_min, eta_max]; needs yield = dp (with it, the mu(I) rheology).");
+  p.add_real("rheology.mu_inf", "", 0.73, Range::gt(0),
+             "mu_i: limiting friction coefficient mu_inf of eq. 11 (> tan alpha).");
+  p.add_real("rheology.I0", "", 0.279, Range::gt(0), "mu_i: inertial number scale I0 of eq. 11.");
+  p.add_real("rheology.d", "m", 0.0, Range::ge(0),
+             "mu_i: particle diameter d of eq. 11; 0 = not given (an error with mu_i).");
+  p.add_real("rheology.eta_min", "Pa s", 1e-3, Range::ge(0),
+             "mu_i: floor of the mu(I) viscosity (where p -> 0); how often it acts is reported.");
+  p.add_real("rheology.eta_max", "Pa s", 1.2, Range::gt(0),
+             "mu_i: cap of the mu(I) viscosity (where |D u| -> 0); 1.2 Pa s is the bound "
+             "observed in the paper; how often it acts is reported.");
+  p.add_real("rheology.r_factor", "", 0.5, Range::gt(0),
+             "Fixed point of eq. 31: the augmentation of the projection is r = r_factor (2 eta "
+             "+ rho a0 h^2/dt) / kappa^2, a local choice; any r > 0 has the same fixed point, "
+             "r_factor only changes how fast it is reached (1 oscillates on case A, 0.5 "
+             "converges).");
+  p.add_real("rheology.theta_per_dt", "1/s", 10.0, Range::gt(0),
+             "Fixed point of eq. 31: pseudo-relaxation theta = theta_per_dt dt (theta = 10 dt "
+             "in section 4.1.3), capped at 0.5.");
+  p.add_real("rheology.fp_tol", "", 1e-4, Range::gt(0),
+             "Fixed point of eq. 31: stop when the largest change of S and s_t in one "
+             "iteration is below this.");
+  p.add_int("rheology.fp_max_iter", "", 50, closed(1, 1e6),
+            "Fixed point of eq. 31: most iterations per time step.");
 
   p.add_bool("levelset.enabled", true,
              "Two phases separated by the level set phi (< 0 granular, > 0 air). false: a "
@@ -172,6 +223,10 @@ Params case_params() {
     p.add_real(b + "velocity", "m/s", 0.0, Range::any(),
                "Tangential wall velocity (no_slip, navier), e.g. a cavity lid; along +x on "
                "bottom/top, +y on left/right.");
+    p.add_real(b + "friction_angle", "degrees", 0.0, closed_open(0, 90),
+               "Wall friction angle alpha_b; 0 = none. Where the granular phase (phi < 0) "
+               "touches this wall, Coulomb friction kappa_b = tan(alpha_b) (-T_n)^+ (eqs. "
+               "22-23, 30) replaces `type`; where air touches it, `type` applies.");
   }
 
   p.add_real("output.interval", "s", 0.01, Range::gt(0),
@@ -259,6 +314,21 @@ CaseConfig fill(const Params& p) {
   c.granular = {p.get_real("phase.granular.rho"), p.get_real("phase.granular.eta")};
   c.air = {p.get_real("phase.air.rho"), p.get_real("phase.air.eta")};
 
+  auto& rh = c.rheology;
+  rh.yield = enum_of<CaseConfig::Yield>(kYields, p.get_string("rheology.yield"));
+  rh.tau_y = p.get_real("rheology.tau_y");
+  rh.friction_angle_deg = p.get_real("rheology.friction_angle");
+  rh.viscosity = enum_of<CaseConfig::Viscosity>(kViscosities, p.get_string("rheology.viscosity"));
+  rh.mu_inf = p.get_real("rheology.mu_inf");
+  rh.I0 = p.get_real("rheology.I0");
+  rh.d = p.get_real("rheology.d");
+  rh.eta_min = p.get_real("rheology.eta_min");
+  rh.eta_max = p.get_real("rheology.eta_max");
+  rh.r_factor = p.get_real("rheology.r_factor");
+  rh.theta_per_dt = p.get_real("rheology.theta_per_dt");
+  rh.fp_tol = p.get_real("rheology.fp_tol");
+  rh.fp_max_iter = static_cast<int>(p.get_int("rheology.fp_max_iter"));
+
   c.levelset.enabled = p.get_bool("levelset.enabled");
   c.levelset.eps_cells = p.get_real("levelset.eps_cells");
   c.levelset.redistance_every = static_cast<int>(p.get_int("levelset.redistance_every"));
@@ -289,6 +359,7 @@ CaseConfig fill(const Params& p) {
     c.walls[s].type = enum_of<CaseConfig::Wall>(kWalls, p.get_string(b + "type"));
     c.walls[s].eta_b = p.get_real(b + "eta_b");
     c.walls[s].velocity = p.get_real(b + "velocity");
+    c.walls[s].friction_angle_deg = p.get_real(b + "friction_angle");
   }
 
   c.output.interval = p.get_real("output.interval");
@@ -502,6 +573,83 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
       c.warnings.push_back(b + "eta_b is set but " + b + "type = " + to_string(c.walls[s].type) +
                            " does not use it");
   }
+  // Rheology. Each error names the key to change, and the value that makes it wrong.
+  {
+    using Yield = CaseConfig::Yield;
+    using Visc = CaseConfig::Viscosity;
+    const auto& rh = c.rheology;
+    const bool mu_i = rh.viscosity == Visc::MuI;
+    const bool yield_ok = ok({"rheology.yield"}), visc_ok = ok({"rheology.viscosity"});
+    if (yield_ok && rh.yield == Yield::Bingham && ok({"rheology.tau_y"}) && rh.tau_y <= 0)
+      errors.add(p.where("rheology.tau_y") +
+                 ": rheology.yield = \"bingham\" needs a yield stress: must be > 0 (Pa)");
+    if (visc_ok && mu_i) {
+      if (ok({"rheology.d"}) && rh.d <= 0)
+        errors.add(p.where("rheology.d") +
+                   ": mu(I) without d: rheology.viscosity = \"mu_i\" needs the particle "
+                   "diameter (eq. 11): must be > 0 (m)");
+      if (ok({"rheology.mu_inf", "rheology.friction_angle"}) && rh.mu_inf <= rh.tan_alpha())
+        errors.add(p.where("rheology.mu_inf") +
+                   ": rheology.viscosity = \"mu_i\" needs mu_inf > tan(rheology.friction_angle) "
+                   "= tan(" +
+                   format_number(rh.friction_angle_deg) + " deg) = " + g4(rh.tan_alpha()) +
+                   " (otherwise the eq. 11 viscosity is <= 0)");
+      if (yield_ok && rh.yield != Yield::DruckerPrager)
+        errors.add(p.where("rheology.viscosity") +
+                   ": the mu(I) rheology is Drucker-Prager with the eq. 11 viscosity: needs "
+                   "rheology.yield = \"dp\", not \"" +
+                   to_string(rh.yield) + "\"");
+      if (ok({"rheology.eta_min", "rheology.eta_max"}) && rh.eta_min >= rh.eta_max)
+        errors.add(p.where("rheology.eta_min") +
+                   ": must be < rheology.eta_max = " + format_number(rh.eta_max) + " (Pa s)");
+    }
+    // Pressure-dependent models need a weight: with g = 0 the granular phase has no
+    // (lithostatic) pressure, so kappa (and the mu(I) viscosity) would vanish.
+    const bool pressure_model =
+        yield_ok && (rh.yield == Yield::DruckerPrager || rh.yield == Yield::Hydrostatic);
+    if (ok({"physics.gravity"}) && momentum && (pressure_model || (visc_ok && mu_i))) {
+      const std::string model =
+          pressure_model ? std::string("rheology.yield = \"") + to_string(rh.yield) + "\""
+                         : std::string("rheology.viscosity = \"mu_i\"");
+      if (c.gravity[0] == 0 && c.gravity[1] == 0)
+        errors.add(p.where("physics.gravity") + ": " + model +
+                   (pressure_model ? " scales the yield stress" : " scales the viscosity") +
+                   " with the pressure of the grains' weight: needs non-zero gravity");
+      else if (rh.yield == Yield::Hydrostatic && c.gravity[1] >= 0)
+        errors.add(p.where("physics.gravity") +
+                   ": rheology.yield = \"hp\" weighs the granular column above the point "
+                   "(eq. 15): needs gravity pointing down, gy < 0");
+    }
+    // Keys of a model that is not selected: legal, but usually a slip.
+    if (yield_ok && visc_ok) {
+      std::vector<std::pair<std::string, std::string>> unused_keys;  // key, why unused
+      const std::string y = std::string("rheology.yield = ") + to_string(rh.yield);
+      if (rh.yield != Yield::Bingham) unused_keys.push_back({"rheology.tau_y", y});
+      if (!pressure_model) unused_keys.push_back({"rheology.friction_angle", y});
+      if (!mu_i)
+        for (const char* k : {"rheology.mu_inf", "rheology.I0", "rheology.d", "rheology.eta_min",
+                              "rheology.eta_max"})
+          unused_keys.push_back({k, "rheology.viscosity = constant"});
+      if (rh.yield == Yield::None)
+        for (const char* k : {"rheology.r_factor", "rheology.theta_per_dt", "rheology.fp_tol",
+                              "rheology.fp_max_iter"})
+          unused_keys.push_back({k, y + " (no plastic fixed point)"});
+      for (const auto& [k, why] : unused_keys)
+        if (p.is_set(k)) c.warnings.push_back(k + " is set but " + why + " does not use it");
+    }
+    if (yield_ok && rh.yield != Yield::None && !momentum)
+      c.warnings.push_back(std::string("rheology.yield = ") + to_string(rh.yield) +
+                           " is ignored: flow.prescribed = " + to_string(c.flow.prescribed) +
+                           " does not solve the momentum equations");
+    for (std::size_t s = 0; s < kSides.size(); ++s) {
+      const std::string k = "boundary." + kSides[s] + ".friction_angle";
+      if (yield_ok && ok({k}) && c.walls[s].friction_angle_deg > 0 && rh.yield == Yield::None)
+        c.warnings.push_back(k + " = " + format_number(c.walls[s].friction_angle_deg) +
+                             " with rheology.yield = none: Coulomb wall friction on a Newtonian "
+                             "granular phase (legal, but unusual)");
+    }
+  }
+
   if (ok({"physics.gravity"}) && momentum && c.gravity[0] == 0 && c.gravity[1] == 0 &&
       std::all_of(c.walls.begin(), c.walls.end(), [](const auto& w) { return w.velocity == 0; }))
     c.warnings.push_back("no gravity and no moving wall: nothing drives the flow");
@@ -659,6 +807,100 @@ Scale velocity_scale_of(const CaseConfig& c) {
   return s;
 }
 
+// The lines "rheology ..." and "walls ..." of the report: the model, its parameters, the
+// fixed point's relaxation at the first step, and the wall friction.
+std::string rheology_text(const CaseConfig& c, double dt) {
+  using Yield = CaseConfig::Yield;
+  const auto& rh = c.rheology;
+  std::ostringstream os;
+  const std::string alpha =
+      "alpha = " + format_number(rh.friction_angle_deg) + " deg, tan alpha = " + g4(rh.tan_alpha());
+  os << "rheology   ";
+  switch (rh.yield) {
+    case Yield::None:
+      os << "Newtonian granular phase (rheology.yield = none)";
+      break;
+    case Yield::Bingham:
+      os << "Bingham (bingham): kappa = tau_y = " << g4(rh.tau_y) << " Pa";
+      break;
+    case Yield::DruckerPrager:
+      os << "Drucker-Prager (dp): kappa = tan(alpha) p^+ (eq. 19), " << alpha;
+      break;
+    case Yield::Hydrostatic:
+      os << "hydrostatic Drucker-Prager (hp): kappa = tan(alpha) p_hyd (eq. 15), " << alpha;
+      break;
+  }
+  os << "\n           viscosity ";
+  if (rh.viscosity == CaseConfig::Viscosity::MuI)
+    os << "mu(I) (eq. 11): mu_inf = " << g4(rh.mu_inf) << ", I0 = " << g4(rh.I0)
+       << ", d = " << g4(rh.d) << " m, clipped to [" << g4(rh.eta_min) << ", " << g4(rh.eta_max)
+       << "] Pa s\n";
+  else
+    os << "constant: eta = phase.granular.eta = " << g4(c.granular.eta) << " Pa s\n";
+  if (rh.yield != Yield::None) {
+    const double theta = rh.theta_per_dt * dt;
+    os << "           fixed point (eq. 31): theta = theta_per_dt x first dt = "
+       << g4(rh.theta_per_dt) << " /s x " << g4(dt)
+       << " s = " << (theta > 0.5 ? g4(theta) + ", capped at 0.5" : g4(theta))
+       << "\n           r_factor = " << g4(rh.r_factor) << ", stop at a change < " << g4(rh.fp_tol)
+       << " or after " << rh.fp_max_iter << " iterations\n";
+  }
+  std::string friction;
+  for (std::size_t k = 0; k < c.walls.size(); ++k)
+    if (c.walls[k].friction_angle_deg > 0)
+      friction += (friction.empty() ? "" : ", ") + kSides[k] + " " +
+                  format_number(c.walls[k].friction_angle_deg) + " deg (tan " +
+                  g4(c.walls[k].tan_friction()) + ")";
+  os << "walls      ";
+  for (std::size_t k = 0; k < c.walls.size(); ++k)
+    os << (k ? ", " : "") << kSides[k] << " " << to_string(c.walls[k].type);
+  os << "\n           Coulomb friction where the granular phase touches: "
+     << (friction.empty() ? "none" : friction) << "\n";
+  return os.str();
+}
+
+// The rheology's scales for the "numbers" lines: for a pressure-dependent yield stress, the
+// pressure bound rho_s |g| H_c of the column and the yield stress it gives; the Bingham
+// number Bi = kappa H / (eta U) (yield stress over viscous stress eta U / H) with kappa = tau_y
+// (bingham) or tan(alpha) rho_s |g| H (dp, hp); for mu(I), the inertial number
+// I = 2 d |D| / sqrt(p / rho_s) at |D| = U / H, p = rho_s |g| H.
+void rheology_numbers(const CaseConfig& c, double U, std::vector<std::string>& numbers) {
+  using Yield = CaseConfig::Yield;
+  const auto& rh = c.rheology;
+  const double H = granular_top(c);
+  const double g = std::hypot(c.gravity[0], c.gravity[1]);
+  if (H <= 0 || rh.yield == Yield::None) return;
+  const double rho = c.granular.rho;
+  const double p_max = rho * g * H;
+  double kappa = rh.tau_y;
+  if (rh.yield == Yield::DruckerPrager || rh.yield == Yield::Hydrostatic) {
+    if (g <= 0) return;
+    kappa = rh.tan_alpha() * p_max;
+    numbers.push_back("pressure scale rho_s |g| H = " + g4(p_max) +
+                      " Pa (bound of p in the granular column, H = " + g4(H) + " m)");
+    numbers.push_back("yield stress scale tan(alpha) rho_s |g| H = " + g4(kappa) + " Pa");
+  }
+  if (U <= 0) return;
+  double eta = c.granular.eta;
+  std::string eta_text = "eta_gran";
+  if (rh.viscosity == CaseConfig::Viscosity::MuI && rh.d > 0 && g > 0) {
+    const double D = U / H;
+    const double I = 2 * rh.d * D / std::sqrt(g * H);
+    const double den = 2 * D + rh.I0 * std::sqrt(p_max) / (rh.d * std::sqrt(rho));
+    const double raw = (rh.mu_inf - rh.tan_alpha()) * p_max / den;
+    eta = std::clamp(raw, rh.eta_min, rh.eta_max);
+    eta_text = "eta(I)";
+    numbers.push_back("inertial number I = 2 d (U/H) / sqrt(|g| H) = " + g4(I));
+    numbers.push_back("mu(I) viscosity there eta(I) = " + g4(eta) + " Pa s" +
+                      (raw > rh.eta_max   ? " (capped by eta_max)"
+                       : raw < rh.eta_min ? " (floored at eta_min)"
+                                          : ""));
+  }
+  if (eta > 0)
+    numbers.push_back("Bingham number Bi = kappa H / (" + eta_text +
+                      " U) = " + g4(kappa * H / (eta * U)) + " (yield over viscous stress)");
+}
+
 }  // namespace
 
 double velocity_scale(const CaseConfig& c) { return velocity_scale_of(c).U; }
@@ -694,10 +936,12 @@ std::string describe_case(const CaseConfig& c, int nranks) {
   else
     os << "single phase (the granular fluid fills the domain)\n";
 
+  const double dt = initial_dt(c);
+  if (c.flow.prescribed == Prescribed::None) os << rheology_text(c, dt);
+
   os << "velocity   U = " << g4(sc.U) << " m/s"
      << (sc.why.empty() ? " (nothing drives the flow)" : " = " + sc.why) << "\n";
 
-  const double dt = initial_dt(c);
   os << "time step  first dt = " << g4(dt) << " s (" << to_string(c.time.dt_mode) << "): ";
   if (c.time.dt > 0)
     os << "time.dt as given\n";
@@ -728,6 +972,7 @@ std::string describe_case(const CaseConfig& c, int nranks) {
             kSides[k] + " wall, U = " + g4(U) + " m/s, L = " + g4(L) + " m)");
       }
   }
+  if (c.flow.prescribed == Prescribed::None) rheology_numbers(c, sc.U, numbers);
   for (std::size_t k = 0; k < numbers.size(); ++k)
     os << (k == 0 ? "numbers    " : "           ") << numbers[k] << "\n";
 

@@ -6,7 +6,9 @@
 // The keys, units, defaults, ranges and help texts are declared in one place, case_params()
 // in Case.cpp; `granflow check --list` prints them (print_case_help).
 #include <array>
+#include <cmath>
 #include <iosfwd>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,12 @@ struct CaseConfig {
   // include a lower layer), so static_cast<WallType>(wall.type) is the conversion.
   enum class Wall { FreeSlip, NoSlip, Navier };
   enum class ProbeField { Phi, Rho, U, V, Speed, P, Eta };
+  // Same enumerators, same order as gf::rheology::Yield / Viscosity in rheology/Rheology.hpp.
+  // None: Newtonian granular phase; Bingham: kappa = tau_y; DruckerPrager ("dp"): kappa =
+  // tan(alpha) p^+ (eq. 19); Hydrostatic ("hp"): kappa = tan(alpha) p_hyd (eq. 15).
+  enum class Yield { None, Bingham, DruckerPrager, Hydrostatic };
+  // Constant: eta_s = phase.granular.eta; MuI: the mu(I) viscosity of eq. 11.
+  enum class Viscosity { Constant, MuI };
   enum Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
 
   struct Domain {
@@ -69,7 +77,30 @@ struct CaseConfig {
     Wall type = Wall::FreeSlip;
     double eta_b = 0;     // Pa s/m, Navier coefficient (eq. 24)
     double velocity = 0;  // m/s, tangential wall velocity (+x on bottom/top, +y on left/right)
+    // degrees, in [0, 90); 0 = none. Where the granular phase (phi < 0) touches the wall,
+    // Coulomb friction kappa_b = tan(alpha_b) (-T_n)^+ (eqs. 22-23, 30) replaces `type`;
+    // where air touches it, `type` applies.
+    double friction_angle_deg = 0;
+    double tan_friction() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
     bool operator==(const WallConfig&) const = default;
+  };
+  // The viscoplastic rheology of the granular phase (sections 2.1-2.2, 3.2-3.3).
+  struct Rheology {
+    Yield yield = Yield::None;
+    double tau_y = 0;               // Pa, Bingham yield stress
+    double friction_angle_deg = 0;  // degrees, internal friction alpha (dp, hp, mu_i)
+    Viscosity viscosity = Viscosity::Constant;
+    double mu_inf = 0, I0 = 0;        // -, eq. 11
+    double d = 0;                     // m, particle diameter (0 = not given)
+    double eta_min = 0, eta_max = 0;  // Pa s, floor and cap of the mu(I) viscosity
+    // Fixed point of eq. 31.
+    double r_factor = 0;      // -, r = r_factor (2 eta + rho a0 h^2/dt) / kappa^2
+    double theta_per_dt = 0;  // 1/s, theta = min(theta_per_dt dt, 0.5)
+    double fp_tol = 0;        // -, on the max change of S and s_t in one iteration
+    int fp_max_iter = 0;
+    // mu_s = tan(alpha).
+    double tan_alpha() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
+    bool operator==(const Rheology&) const = default;
   };
   struct Output {
     double interval = 0;           // s (simulated), diagnostics and probes
@@ -97,6 +128,7 @@ struct CaseConfig {
   Time time;
   std::array<double, 2> gravity{};  // m/s^2
   Phase granular, air;
+  Rheology rheology;
   LevelSet levelset;
   Initial initial;
   Flow flow;
@@ -149,6 +181,8 @@ const char* to_string(CaseConfig::Shape v);
 const char* to_string(CaseConfig::Prescribed v);
 const char* to_string(CaseConfig::Wall v);
 const char* to_string(CaseConfig::ProbeField v);
+const char* to_string(CaseConfig::Yield v);
+const char* to_string(CaseConfig::Viscosity v);
 const char* to_string(CaseConfig::Side v);
 
 }  // namespace gf

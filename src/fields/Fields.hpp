@@ -31,7 +31,9 @@ struct State {
   Field vel;      // dm_vel, m/s, u^n (divergence free)
   Field vel_old;  // dm_vel, m/s, u^{n-1}
   Field p;        // dm_cell, Pa
-  Field S;        // dm_ten, dimensionless (Sxx, Sxy, Syy), |S| <= 1; used by rheology
+  Field S;        // dm_ten, dimensionless (Sxx, Sxy, Syy), |S| <= 1 (eq. 29)
+  Field s_wall;   // dm_vel, dimensionless, |s_t| <= 1: Coulomb wall stress direction (eq. 30),
+                  // stored on the wall faces (momentum/Momentum.hpp, wall storage)
   // Derived from phi (refreshed by the stepper): density and viscosity at cell centres.
   Field rho;      // dm_cell, kg/m^3, eq. 25
   Field eta;      // dm_cell, Pa s, harmonic mean with the height fraction (section 3.1)

@@ -51,11 +51,12 @@ Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol) : g_(g), 
   GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lp_));
   GF_PETSC(DMCreateLocalVector(g.dm_vel(), &lvel_));
   GF_PETSC(DMCreateLocalVector(g.dm_vel(), &lvel_old_));
+  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lphi_));
 }
 
 Predictor::~Predictor() {
   for (Vec* v : {&wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_, &lp_, &lvel_,
-                 &lvel_old_})
+                 &lvel_old_, &lphi_})
     VecDestroy(v);
   KSPDestroy(&ksp_);
   MatDestroy(&A_);
@@ -79,6 +80,12 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), leta_, &ec));
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), letan_, &en));
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), wall_rhs_, &wr));
+  const PetscScalar** ph = nullptr;
+  if (have_phase_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &ph));
+  // A granular face on a frictional wall has the Coulomb traction instead (add_plastic).
+  auto cw = [&](const WallBC& w, double e, double d, int side, PetscInt i, PetscInt j) {
+    return coulomb_face(ph, side, i, j) ? 0.0 : wall_coefficient(w, e, d);
+  };
   GF_PETSC(MatZeroEntries(A_));
 
   const double hx = b.hx, hy = b.hy, hx2 = hx * hx, hy2 = hy * hy, hxy = hx * hy;
@@ -112,7 +119,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
           add(i - 1, j + 1, 1, e / hxy);
         } else {  // top wall
           const double e = 0.5 * (ec[j][i - 1] + ec[j][i]);
-          const double c = wall_coefficient(bc_.top, e, 0.5 * hy);
+          const double c = cw(bc_.top, e, 0.5 * hy, 3, i, j);
           diag += c / hy;
           wr[j][i].u += c * bc_.top.velocity / hy;
         }
@@ -125,7 +132,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
           add(i - 1, j, 1, -e / hxy);
         } else {  // bottom wall
           const double e = 0.5 * (ec[j][i - 1] + ec[j][i]);
-          const double c = wall_coefficient(bc_.bottom, e, 0.5 * hy);
+          const double c = cw(bc_.bottom, e, 0.5 * hy, 2, i, j);
           diag += c / hy;
           wr[j][i].u += c * bc_.bottom.velocity / hy;
         }
@@ -157,7 +164,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
           add(i + 1, j - 1, 0, e / hxy);
         } else {  // right wall
           const double e = 0.5 * (ec[j - 1][i] + ec[j][i]);
-          const double c = wall_coefficient(bc_.right, e, 0.5 * hx);
+          const double c = cw(bc_.right, e, 0.5 * hx, 1, i, j);
           diag += c / hx;
           wr[j][i].v += c * bc_.right.velocity / hx;
         }
@@ -170,7 +177,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
           add(i, j - 1, 0, -e / hxy);
         } else {  // left wall
           const double e = 0.5 * (ec[j - 1][i] + ec[j][i]);
-          const double c = wall_coefficient(bc_.left, e, 0.5 * hx);
+          const double c = cw(bc_.left, e, 0.5 * hx, 0, i, j);
           diag += c / hx;
           wr[j][i].v += c * bc_.left.velocity / hx;
         }
@@ -178,6 +185,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         GF_PETSC(MatSetValuesStencil(A_, 1, &row, n, col, val, INSERT_VALUES));
       }
     }
+  if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), wall_rhs_, &wr));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), letan_, &en));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), leta_, &ec));

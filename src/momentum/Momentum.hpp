@@ -48,6 +48,34 @@ class Predictor {
   // Solves A u~ = rhs. Returns the KSP iteration count; throws RunError on divergence.
   int solve(Vec rhs, Vec u_tilde);
 
+  // ---- The plastic part of eq. 31 (rheology plugs in here; see Plastic.cpp) ----
+  // Coulomb friction coefficient tan(alpha_b) per wall, in the order left, right, bottom, top
+  // (0 = none). Where the granular phase (phi < 0 on the face) touches such a wall, the wall
+  // traction is -kappa_b s_t (eqs. 22-23, 30) instead of the Navier/no-slip/free-slip law.
+  void set_wall_friction(const std::array<double, 4>& tan_alpha_b) { tan_b_ = tan_alpha_b; }
+  bool has_wall_friction() const;
+  // Tells assemble() and the plastic terms which wall faces are granular (phi: global Vec).
+  void set_phase(Vec phi);
+  // rhs += div(kappa S) on the faces, plus the Coulomb wall tractions -kappa_b s_t.
+  // kappa: cell yield stress (Pa); S: dm_ten (Sxx, Sxy, Syy); kappa_b, s_wall: dm_vel wall
+  // storage (see below).
+  void add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs);
+  // D(u) at the cell centres (dm_ten: Dxx, Dxy, Dyy), with the shear at wall nodes from the
+  // wall condition (no slip, Navier: from the wall velocity; free slip, Coulomb: zero).
+  void strain_rate(Vec vel, Vec eta, Vec D);
+  // Wall storage in a dm_vel Vec: the bottom / top wall value of the u-face (i, 0) / (i, ny-1)
+  // in component u at (i, 0) / (i, ny-1); the left / right wall value of the v-face (0, j) /
+  // (nx-1, j) in component v at (0, j) / (nx-1, j). Faces without Coulomb friction or not
+  // granular hold 0.
+  // kappa_b = tan(alpha_b) (-T_n)^+ with -T_n taken as the pressure p^n of the adjacent cell
+  // (the normal viscous stress vanishes at a wall where u.n = 0 and the tangential velocity is
+  // uniform along it); explicit in the fixed point.
+  void wall_yield(Vec p, Vec kappa_b);
+  // s_t <- P_b(s_t + r_b kappa_b u_t + theta (s_t^n - s_t)) on the granular Coulomb faces (eq. 31),
+  // r_b = r_factor (rho a0 h / dt + 2 eta / h) / kappa_b^2. Returns max |change| (collective).
+  double update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,
+                     double a0_over_dt, double theta, double r_factor);
+
   Mat matrix() const { return A_; }
 
  private:
@@ -59,7 +87,11 @@ class Predictor {
   Vec lrho_ = nullptr, leta_ = nullptr, letan_ = nullptr, lvel_ = nullptr, lvel_old_ = nullptr,
       lp_ = nullptr;
   Vec conv_ = nullptr, conv_old_ = nullptr;
-  bool preconditioner_built_ = false;
+  std::array<double, 4> tan_b_{0, 0, 0, 0};  // left, right, bottom, top
+  Vec lphi_ = nullptr;                       // local phi of the current step (granular faces)
+  bool have_phase_ = false;
+  // Is the wall face granular and frictional? side: 0 left, 1 right, 2 bottom, 3 top.
+  bool coulomb_face(const PetscScalar* const* phi, int side, PetscInt i, PetscInt j) const;
 };
 
 }  // namespace gf::momentum

@@ -34,6 +34,28 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
     case CaseConfig::Prescribed::Rotation: p.prescribed = PrescribedFlow::Rotation; break;
     case CaseConfig::Prescribed::SingleVortex: p.prescribed = PrescribedFlow::SingleVortex; break;
   }
+  const auto& rh = c.rheology;
+  switch (rh.yield) {
+    case CaseConfig::Yield::None: p.rheo.yield = rheology::Yield::None; break;
+    case CaseConfig::Yield::Bingham: p.rheo.yield = rheology::Yield::Bingham; break;
+    case CaseConfig::Yield::DruckerPrager: p.rheo.yield = rheology::Yield::DruckerPrager; break;
+    case CaseConfig::Yield::Hydrostatic: p.rheo.yield = rheology::Yield::Hydrostatic; break;
+  }
+  p.rheo.tau_y = rh.tau_y;
+  p.rheo.tan_alpha = rh.tan_alpha();
+  p.rheo.viscosity = rh.viscosity == CaseConfig::Viscosity::MuI ? rheology::Viscosity::MuI
+                                                                 : rheology::Viscosity::Constant;
+  p.rheo.mu_inf = rh.mu_inf;
+  p.rheo.I0 = rh.I0;
+  p.rheo.d = rh.d;
+  p.rheo.eta_min = rh.eta_min;
+  p.rheo.eta_max = rh.eta_max;
+  p.rheo.r_factor = rh.r_factor;
+  p.rheo.theta_per_dt = rh.theta_per_dt;
+  p.rheo.fp_tol = rh.fp_tol;
+  p.rheo.fp_max_iter = rh.fp_max_iter;
+  for (int sd = 0; sd < 4; ++sd)
+    p.wall_tan_b[sd] = c.walls[sd].friction_angle_deg > 0 ? c.walls[sd].tan_friction() : 0.0;
   p.omega = c.flow.omega;
   p.cx = c.flow.cx;
   p.cy = c.flow.cy;

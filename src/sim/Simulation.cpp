@@ -56,13 +56,16 @@ RunSummary Simulation::run() {
 
   io::CsvWriter csv(rc_.out_dir + "/diagnostics.csv",
                     {"t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed",
-                     "kinetic_energy", "max_divergence", "visc_its", "pres_its"},
+                     "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
+                     "fp_change"},
                     g_.comm());
   io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes);
   std::unique_ptr<io::VtkSeries> vtk;
   if (rc_.vtk_interval > 0) vtk = std::make_unique<io::VtkSeries>(g_, rc_.out_dir, "fields");
   // Cell-centred velocity (2 interleaved components, reusing the dm_vel layout) and |u|.
   Field ucell(g_.dm_vel(), "u_cell"), speed(g_.dm_cell(), "speed");
+  Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
+      yielded(g_.dm_cell(), "yielded");
 
   const double eps = cfg.levelset ? cfg.eps : 0.0;
   auto volume = [&]() {
@@ -72,6 +75,8 @@ RunSummary Simulation::run() {
   RunSummary sum;
   StepStats last;
   double max_div_run = 0;
+  long long fp_capped_steps = 0;  // steps whose fixed point stopped at its cap (a warning)
+  int max_fp_iters = 0;
 
   auto write_diag = [&]() {
     const double vol = volume();
@@ -80,15 +85,19 @@ RunSummary Simulation::run() {
     max_div_run = std::max(max_div_run, div);
     csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
              diag::max_speed(g_, s_.vel), diag::kinetic_energy(g_, s_.vel, s_.rho), div,
-             static_cast<double>(last.visc_its), static_cast<double>(last.pres_its)});
+             static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
+             static_cast<double>(last.fp_iters), last.fp_change});
     probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta);
     sum.volume_change_pct = vchange;
   };
   auto write_vtk = [&]() {
     if (!vtk) return;
     io::cell_velocity(g_, s_.vel, ucell, nullptr, speed);
+    stepper_.derived_fields(s_, dnorm, snorm, yielded);
     vtk->write(s_.t, {{"phi", s_.phi, 1}, {"rho", s_.rho, 1}, {"u", ucell, 2},
-                      {"speed", speed, 1}, {"p", s_.p, 1}, {"eta", s_.eta, 1}});
+                      {"speed", speed, 1}, {"p", s_.p, 1}, {"eta", s_.eta, 1},
+                      {"D_norm", dnorm, 1}, {"S_norm", snorm, 1}, {"yielded", yielded, 1},
+                      {"kappa", stepper_.kappa(), 1}});
   };
 
   stepper_.initialize(s_);
@@ -118,6 +127,8 @@ RunSummary Simulation::run() {
       throw RunError(m.str());
     }
     last = stepper_.step(s_, dt);
+    if (last.fp_capped) ++fp_capped_steps;
+    max_fp_iters = std::max(max_fp_iters, last.fp_iters);
     dt_prev = dt;
     // Failure detection: a non-finite velocity or pressure anywhere stops the run.
     PetscReal nv, np;
@@ -166,7 +177,9 @@ RunSummary Simulation::run() {
       .set("max_divergence", sum.max_divergence)
       .set("volume_change_pct", sum.volume_change_pct)
       .set("max_speed", diag::max_speed(g_, s_.vel))
-      .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho));
+      .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho))
+      .set("max_fp_iters", static_cast<long long>(max_fp_iters))
+      .set("warnings_fp_capped_steps", fp_capped_steps);
   if (prescribed && cfg.levelset) {
     // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
     const double a0 = levelset::granular_area(g_, phi0, 0.0);

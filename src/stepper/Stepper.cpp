@@ -1,6 +1,10 @@
 #include "stepper/Stepper.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/Error.hpp"
+#include "levelset/Heaviside.hpp"
 #include "levelset/LevelSet.hpp"
 #include "levelset/PrescribedFlow.hpp"
 #include "momentum/Momentum.hpp"
@@ -18,6 +22,19 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
     predictor_ = std::make_unique<momentum::Predictor>(g, cfg_.bc, cfg_.viscous_rtol);
     projector_ = std::make_unique<projection::Projector>(g, cfg_.pressure_rtol);
   }
+  plastic_ = cfg_.rheo.active() ||
+             std::any_of(cfg_.wall_tan_b.begin(), cfg_.wall_tan_b.end(), [](double t) { return t > 0; });
+  if (predictor_) predictor_->set_wall_friction(cfg_.wall_tan_b);
+  // -fp_monitor: print the change of every fixed-point iteration (convergence studies).
+  PetscBool mon = PETSC_FALSE;
+  GF_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-fp_monitor", &mon, nullptr));
+  fp_monitor_ = mon;
+  if (fp_monitor_) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs0_mon_));
+  for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_}) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
+  for (Vec* v : {&D_, &S_n_}) GF_PETSC(DMCreateGlobalVector(g.dm_ten(), v));
+  for (Vec* v : {&kappa_b_, &sw_n_, &rhs0_}) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), v));
+  GF_PETSC(VecSet(kappa_, 0.0));
+  GF_PETSC(VecSet(kappa_b_, 0.0));
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &eta_node_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &u_tilde_));
@@ -25,7 +42,9 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
 }
 
 Stepper::~Stepper() {
-  for (Vec* v : {&eta_node_, &rhs_, &u_tilde_, &lphi_}) VecDestroy(v);
+  for (Vec* v : {&eta_node_, &rhs_, &u_tilde_, &lphi_, &kappa_, &kappa_b_, &D_, &S_n_, &sw_n_,
+                 &rhs0_, &p_hyd_, &gran_, &eta_s_, &rhs0_mon_})
+    VecDestroy(v);
 }
 
 void Stepper::update_properties(State& s) {
@@ -53,6 +72,102 @@ void Stepper::update_properties(State& s) {
     }
   GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), eta_node_, &en));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &phi));
+  if (cfg_.rheo.viscosity == rheology::Viscosity::MuI && predictor_) mu_i_viscosity(s);
+}
+
+// The mu(I) viscosity of eq. 11 from |D(u^n)| and p^n (explicit in the step, so that the
+// viscous operator stays linear and fixed during the fixed point), then the same harmonic
+// means with the air as for a constant eta_s.
+void Stepper::mu_i_viscosity(State& s) {
+  const Box& b = g_.box();
+  predictor_->strain_rate(s.vel, s.eta, D_);
+  {
+    const PetscScalar*** d;
+    const PetscScalar** pa;
+    PetscScalar** es;
+    GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), D_, &d));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.p, &pa));
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), eta_s_, &es));
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        const double dxx = 0.5 * (d[j][i][0] - d[j][i][2]), dxy = d[j][i][1];
+        es[j][i] = rheology::mu_i_viscosity(cfg_.rheo, std::hypot(dxx, dxy), pa[j][i], cfg_.rho_gran);
+      }
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), eta_s_, &es));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.p, &pa));
+    GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), D_, &d));
+  }
+  Vec les;
+  GF_PETSC(DMGetLocalVector(g_.dm_cell(), &les));
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), eta_s_, INSERT_VALUES, les));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), eta_s_, INSERT_VALUES, les));
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), s.phi, INSERT_VALUES, lphi_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), s.phi, INSERT_VALUES, lphi_));
+  const PetscScalar **es, **phi;
+  PetscScalar **ec, **en;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), les, &es));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &phi));
+  GF_PETSC(DMDAVecGetArray(g_.dm_cell(), s.eta, &ec));
+  GF_PETSC(DMDAVecGetArray(g_.dm_cell(), eta_node_, &en));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double thc = cfg_.levelset ? levelset::height_fraction_cell(b, phi, i, j) : 0.0;
+      ec[j][i] = levelset::harmonic_viscosity(thc, cfg_.eta_air, es[j][i]);
+      if (i >= 1 && j >= 1) {  // interior node: mean of the four surrounding cells
+        const double esn = 0.25 * (es[j][i] + es[j][i - 1] + es[j - 1][i] + es[j - 1][i - 1]);
+        const double thn = cfg_.levelset ? levelset::height_fraction_node(b, phi, i, j) : 0.0;
+        en[j][i] = levelset::harmonic_viscosity(thn, cfg_.eta_air, esn);
+      }
+    }
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), eta_node_, &en));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), s.eta, &ec));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &phi));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), les, &es));
+  GF_PETSC(DMRestoreLocalVector(g_.dm_cell(), &les));
+}
+
+// kappa (eqs. 18-19) from phi^{n+1} and p^n, and the wall yield kappa_b (eq. 22).
+void Stepper::update_yield(State& s) {
+  if (cfg_.rheo.yield == rheology::Yield::Hydrostatic) {
+    // Granular fraction 1 - H_eps(phi) of each cell, weighed by eq. 15.
+    const Box& b = g_.box();
+    const PetscScalar** ph;
+    PetscScalar** c;
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.phi, &ph));
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), gran_, &c));
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i)
+        c[j][i] = cfg_.levelset ? 1.0 - levelset::heaviside(ph[j][i], cfg_.eps) : 1.0;
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), gran_, &c));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.phi, &ph));
+    const double gabs = std::hypot(cfg_.gravity[0], cfg_.gravity[1]);
+    // The weight of the column above acts along the vertical axis: its y-component.
+    rheology::hydrostatic_pressure(g_, gran_, cfg_.rho_gran, std::abs(cfg_.gravity[1]) > 0 ? std::abs(cfg_.gravity[1]) : gabs, p_hyd_);
+  }
+  rheology::yield_stress(g_, cfg_.rheo, s.phi, s.p, p_hyd_, kappa_);
+  predictor_->wall_yield(s.p, kappa_b_);
+}
+
+void Stepper::derived_fields(State& s, Vec Dnorm, Vec Snorm, Vec yielded) {
+  if (predictor_) {
+    predictor_->strain_rate(s.vel, s.eta, D_);
+    rheology::tensor_norm(g_, D_, Dnorm);
+  } else {
+    GF_PETSC(VecSet(Dnorm, 0.0));
+  }
+  rheology::tensor_norm(g_, s.S, Snorm);
+  const Box& b = g_.box();
+  const PetscScalar **sn, **k;
+  PetscScalar** y;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), Snorm, &sn));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), kappa_, &k));
+  GF_PETSC(DMDAVecGetArray(g_.dm_cell(), yielded, &y));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i)
+      y[j][i] = (k[j][i] <= 0 || sn[j][i] >= 1.0 - 1e-9) ? 1.0 : 0.0;
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), yielded, &y));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), kappa_, &k));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), Snorm, &sn));
 }
 
 void Stepper::prescribe_velocity(State& s, double t) {
@@ -63,6 +178,7 @@ void Stepper::prescribe_velocity(State& s, double t) {
 }
 
 void Stepper::initialize(State& s) {
+  if (predictor_) predictor_->set_phase(s.phi);
   update_properties(s);
   if (cfg_.prescribed != PrescribedFlow::None) {
     prescribe_velocity(s, s.t);
@@ -108,17 +224,58 @@ StepStats Stepper::step(State& s, double dt) {
   }
   // 2. rho^{n+1}, eta^{n+1} (constant in a one-phase run: then the matrices, and the
   //    preconditioners built on them, are kept from step to step).
-  const bool props_change = cfg_.levelset || first;
-  if (props_change) update_properties(s);
+  const bool props_change =
+      cfg_.levelset || first || cfg_.rheo.viscosity == rheology::Viscosity::MuI;
+  if (props_change) {
+    update_properties(s);
+    predictor_->set_phase(s.phi);
+  }
   // 3. Prediction, eq. 31 (kappa = 0: Newtonian phases).
   const auto c = momentum::TimeCoeffs::make(dt, s.dt, first);
   if (props_change || c.a0 / dt != assembled_a0dt_) {
     predictor_->assemble(s.rho, s.eta, eta_node_, c.a0 / dt);
     assembled_a0dt_ = c.a0 / dt;
   }
-  predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs_);
+  predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
   GF_PETSC(VecCopy(s.vel, u_tilde_));  // initial guess
-  st.visc_its = predictor_->solve(rhs_, u_tilde_);
+  if (!plastic_) {
+    st.visc_its = predictor_->solve(rhs0_, u_tilde_);
+  } else {
+    // The fixed point of eq. 31: viscous solve with the current S and s_t, then
+    //   S   <- P  (S   + r   kappa   D(u~) + theta (S^n   - S)),
+    //   s_t <- P_b(s_t + r_b kappa_b u~_t  + theta (s_t^n - s_t)),
+    // until the change is below fp_tol. theta = theta_per_dt dt ("theta = 10 dt", 4.1.3)
+    // makes it contract geometrically with ratio (1 - theta) or better; the matrix and its
+    // preconditioner are the same in every iteration, only the right-hand side changes.
+    update_yield(s);
+    GF_PETSC(VecCopy(s.S, S_n_));
+    GF_PETSC(VecCopy(s.s_wall, sw_n_));
+    const double theta = std::min(0.5, cfg_.rheo.theta_per_dt * dt);
+    for (int k = 1; k <= cfg_.rheo.fp_max_iter; ++k) {
+      GF_PETSC(VecCopy(rhs0_, rhs_));
+      predictor_->add_plastic(kappa_, s.S, kappa_b_, s.s_wall, rhs_);
+      if (fp_monitor_) GF_PETSC(VecCopy(u_tilde_, rhs0_mon_));
+      st.visc_its += predictor_->solve(rhs_, u_tilde_);
+      PetscReal du = 0, un = 0;
+      if (fp_monitor_) {
+        GF_PETSC(VecAXPY(rhs0_mon_, -1.0, u_tilde_));
+        GF_PETSC(VecNorm(rhs0_mon_, NORM_INFINITY, &du));
+        GF_PETSC(VecNorm(u_tilde_, NORM_INFINITY, &un));
+      }
+      predictor_->strain_rate(u_tilde_, s.eta, D_);
+      double ch = rheology::update_plastic(g_, cfg_.rheo, s.S, S_n_, kappa_, D_, s.rho, s.eta,
+                                           c.a0 / dt, theta);
+      ch = std::max(ch, predictor_->update_wall(u_tilde_, kappa_b_, s.s_wall, sw_n_, s.rho, s.eta,
+                                                c.a0 / dt, theta, cfg_.rheo.r_factor));
+      st.fp_iters = k;
+      st.fp_change = ch;
+      if (fp_monitor_)
+        PetscPrintf(g_.comm(), "  fixed point step %lld iteration %d change %.6e  |du~| %.3e m/s (max |u~| %.3e)\n",
+                    s.step + 1, k, ch, (double)du, (double)un);
+      if (ch < cfg_.rheo.fp_tol) break;
+    }
+    st.fp_capped = st.fp_change >= cfg_.rheo.fp_tol;
+  }
   // 4. Projection, eq. 32.
   if (props_change) projector_->assemble(s.rho);
   st.pres_its = projector_->project(u_tilde_, s.p, s.rho, c.a0, dt);

@@ -12,6 +12,7 @@
 #include "boundary/Boundary.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
+#include "rheology/Rheology.hpp"
 
 namespace gf {
 namespace levelset {
@@ -38,12 +39,17 @@ struct PhysicsConfig {
   double redistance_cfl = 0.5;
   Boundaries bc;
   double pressure_rtol = 1e-10, viscous_rtol = 1e-10;
+  rheology::Params rheo;                       // yield stress, viscosity law, fixed point
+  std::array<double, 4> wall_tan_b{0, 0, 0, 0};  // Coulomb tan(alpha_b): left, right, bottom, top
   PrescribedFlow prescribed = PrescribedFlow::None;
   double omega = 0, cx = 0, cy = 0, period = 1;  // rad/s, m, m, s
 };
 
 struct StepStats {
-  int visc_its = 0, pres_its = 0;
+  int visc_its = 0, pres_its = 0;  // KSP iterations: viscous (all fixed-point iterations), pressure
+  int fp_iters = 0;                // fixed-point iterations of eq. 31
+  double fp_change = 0;            // last change of S and s_t (dimensionless)
+  bool fp_capped = false;          // stopped at fp_max_iter without reaching fp_tol
   bool redistanced = false;
 };
 
@@ -62,6 +68,10 @@ class Stepper {
   void prescribe_velocity(State& s, double t);
 
   Vec eta_node() const { return eta_node_; }
+  Vec kappa() const { return kappa_; }
+  // Output fields: |D(u^n)| (1/s), |S| and the yielded mask (1 where |S| >= 1 - 1e-12, i.e. the
+  // material flows; 0 where rigid), all cell centred (dm_cell).
+  void derived_fields(State& s, Vec Dnorm, Vec Snorm, Vec yielded);
   const PhysicsConfig& config() const { return cfg_; }
 
  private:
@@ -72,6 +82,13 @@ class Stepper {
   std::unique_ptr<momentum::Predictor> predictor_;
   std::unique_ptr<projection::Projector> projector_;
   double assembled_a0dt_ = -1;  // a0/dt of the assembled viscous matrix, 1/s
+  bool plastic_ = false;
+  bool fp_monitor_ = false;
+  Vec rhs0_mon_ = nullptr;  // previous u~ for -fp_monitor  // a yield stress or wall friction: the fixed point of eq. 31 runs
+  Vec kappa_ = nullptr, kappa_b_ = nullptr, D_ = nullptr, S_n_ = nullptr, sw_n_ = nullptr,
+      rhs0_ = nullptr, p_hyd_ = nullptr, gran_ = nullptr, eta_s_ = nullptr;
+  void update_yield(State& s);
+  void mu_i_viscosity(State& s);
   Vec eta_node_ = nullptr, rhs_ = nullptr, u_tilde_ = nullptr, lphi_ = nullptr;
 };
 

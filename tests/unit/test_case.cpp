@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -222,6 +223,69 @@ std::vector<BadCase> bad_cases() {
        "",
        {"probe[1].x0=0.1"},
        {"--set: probe[1].x0 = 0.1: [[probe]] entries can only be given in the case file"}},
+      // Rheology.
+      {"rheology_bad_enum",
+       "[rheology]\nyield = \"drucker\"\n",
+       {},
+       {"rheology_bad_enum.toml:2: rheology.yield = \"drucker\": must be one of none, bingham, "
+        "dp, hp"}},
+      {"mu_i_without_d",
+       "[rheology]\nyield = \"dp\"\nviscosity = \"mu_i\"\n",
+       {},
+       {"mu_i_without_d.toml: rheology.d = 0 (default): mu(I) without d: rheology.viscosity = "
+        "\"mu_i\" needs the particle diameter (eq. 11): must be > 0 (m)"}},
+      {"mu_inf_below_tan_alpha",
+       "[rheology]\nyield = \"dp\"\nviscosity = \"mu_i\"\nd = 5e-4\nmu_inf = 0.4\n",
+       {},
+       {"mu_inf_below_tan_alpha.toml:5: rheology.mu_inf = 0.4: rheology.viscosity = \"mu_i\" "
+        "needs mu_inf > tan(rheology.friction_angle) = tan(25.5 deg) = 0.477"}},
+      {"mu_inf_below_tan_alpha_by_angle",
+       "",
+       {"rheology.yield=dp", "rheology.viscosity=mu_i", "rheology.d=5e-4",
+        "rheology.friction_angle=40"},
+       {"rheology.mu_inf = 0.73 (default): rheology.viscosity = \"mu_i\" needs mu_inf > "
+        "tan(rheology.friction_angle) = tan(40 deg) = 0.8391"}},
+      {"mu_i_needs_dp",
+       "[rheology]\nyield = \"hp\"\nviscosity = \"mu_i\"\nd = 5e-4\n",
+       {},
+       {"mu_i_needs_dp.toml:3: rheology.viscosity = \"mu_i\": the mu(I) rheology is "
+        "Drucker-Prager with the eq. 11 viscosity: needs rheology.yield = \"dp\", not \"hp\""}},
+      {"bingham_without_tau_y",
+       "[rheology]\nyield = \"bingham\"\n",
+       {},
+       {"bingham_without_tau_y.toml: rheology.tau_y = 0 (default): rheology.yield = "
+        "\"bingham\" needs a yield stress: must be > 0 (Pa)"}},
+      {"negative_tau_y",
+       "[rheology]\ntau_y = -1.0\n",
+       {},
+       {"rheology.tau_y = -1.0: must be >= 0 (Pa)"}},
+      {"friction_angle_90",
+       "[rheology]\nfriction_angle = 90\n",
+       {},
+       {"rheology.friction_angle = 90: must be in (0, 90) (degrees)"}},
+      {"wall_friction_angle_95",
+       "[boundary.bottom]\nfriction_angle = 95\n",
+       {},
+       {"wall_friction_angle_95.toml:2: boundary.bottom.friction_angle = 95: must be in [0, 90) "
+        "(degrees)"}},
+      {"fp_max_iter_zero",
+       "[rheology]\nfp_max_iter = 0\n",
+       {},
+       {"rheology.fp_max_iter = 0: must be in [1, 1000000]"}},
+      {"dp_without_gravity",
+       "[rheology]\nyield = \"dp\"\n[physics]\ngravity = [0.0, 0.0]\n",
+       {},
+       {"dp_without_gravity.toml:4: physics.gravity = [0, 0]: rheology.yield = \"dp\" scales the "
+        "yield stress with the pressure of the grains' weight: needs non-zero gravity"}},
+      {"hp_with_horizontal_gravity",
+       "",
+       {"rheology.yield=hp", "physics.gravity=[9.81, 0]"},
+       {"--set: physics.gravity = [9.81, 0]: rheology.yield = \"hp\" weighs the granular "
+        "column above the point (eq. 15): needs gravity pointing down, gy < 0"}},
+      {"mu_i_eta_bounds",
+       "",
+       {"rheology.yield=dp", "rheology.viscosity=mu_i", "rheology.d=5e-4", "rheology.eta_min=2"},
+       {"--set: rheology.eta_min = 2: must be < rheology.eta_max = 1.2 (Pa s)"}},
   };
 }
 
@@ -309,6 +373,151 @@ TEST(CaseFile, DefaultsGiveThePapersCaseA) {
   EXPECT_DOUBLE_EQ(c.walls[gf::CaseConfig::kLeft].eta_b, 1.0);
   EXPECT_TRUE(c.probes.empty());
   EXPECT_TRUE(c.warnings.empty());
+}
+
+TEST(CaseFile, RheologyDefaultsAreNewtonianWithThePapersConstants) {
+  const auto c = load_case(write_file("rheo_empty.toml", ""), {});
+  const auto& rh = c.rheology;
+  EXPECT_EQ(rh.yield, gf::CaseConfig::Yield::None);
+  EXPECT_EQ(rh.viscosity, gf::CaseConfig::Viscosity::Constant);
+  EXPECT_DOUBLE_EQ(rh.tau_y, 0);
+  EXPECT_DOUBLE_EQ(rh.friction_angle_deg, 25.5);
+  EXPECT_NEAR(rh.tan_alpha(), 0.47698, 1e-5);
+  EXPECT_DOUBLE_EQ(rh.mu_inf, 0.73);
+  EXPECT_DOUBLE_EQ(rh.I0, 0.279);
+  EXPECT_DOUBLE_EQ(rh.d, 0);
+  EXPECT_DOUBLE_EQ(rh.eta_min, 1e-3);
+  EXPECT_DOUBLE_EQ(rh.eta_max, 1.2);
+  EXPECT_DOUBLE_EQ(rh.r_factor, 0.5);
+  EXPECT_DOUBLE_EQ(rh.theta_per_dt, 10);
+  EXPECT_DOUBLE_EQ(rh.fp_tol, 1e-4);
+  EXPECT_EQ(rh.fp_max_iter, 50);
+  for (const auto& w : c.walls) {
+    EXPECT_DOUBLE_EQ(w.friction_angle_deg, 0);
+    EXPECT_DOUBLE_EQ(w.tan_friction(), 0);
+  }
+  EXPECT_STREQ(gf::to_string(gf::CaseConfig::Yield::DruckerPrager), "dp");
+  EXPECT_STREQ(gf::to_string(gf::CaseConfig::Yield::Hydrostatic), "hp");
+  EXPECT_STREQ(gf::to_string(gf::CaseConfig::Viscosity::MuI), "mu_i");
+  const std::string d = gf::describe_case(c, 1);
+  EXPECT_NE(d.find("Newtonian granular phase (rheology.yield = none)"), std::string::npos) << d;
+  EXPECT_NE(d.find("Coulomb friction where the granular phase touches: none"), std::string::npos)
+      << d;
+  EXPECT_EQ(d.find("Bingham number"), std::string::npos) << d;
+}
+
+TEST(CaseFile, WallFrictionOnANewtonianPhaseIsLegalButWarned) {
+  const auto c =
+      load_case(write_file("rheo_wall.toml", "[boundary.bottom]\nfriction_angle = 20\n"), {});
+  EXPECT_DOUBLE_EQ(c.walls[gf::CaseConfig::kBottom].friction_angle_deg, 20);
+  EXPECT_NEAR(c.walls[gf::CaseConfig::kBottom].tan_friction(),
+              std::tan(20 * std::numbers::pi / 180), 1e-15);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0],
+            "boundary.bottom.friction_angle = 20 with rheology.yield = none: Coulomb wall "
+            "friction on a Newtonian granular phase (legal, but unusual)");
+  // With a yield stress it is the paper's setting: no warning.
+  EXPECT_TRUE(load_case(write_file("rheo_wall_dp.toml",
+                                   "[rheology]\nyield = \"dp\"\n[boundary.bottom]\n"
+                                   "friction_angle = 20\n"),
+                        {})
+                  .warnings.empty());
+}
+
+TEST(CaseFile, RheologyKeysOfAnotherModelGiveWarnings) {
+  const auto c = load_case(write_file("rheo_unused.toml",
+                                      "[rheology]\nyield = \"bingham\"\ntau_y = 20\n"
+                                      "friction_angle = 30\nd = 1e-3\n"),
+                           {});
+  ASSERT_EQ(c.warnings.size(), 2u);
+  EXPECT_EQ(c.warnings[0],
+            "rheology.friction_angle is set but rheology.yield = bingham does not use it");
+  EXPECT_EQ(c.warnings[1], "rheology.d is set but rheology.viscosity = constant does not use it");
+}
+
+TEST(CaseFile, MuIRheologyRoundTripsAndIsDescribed) {
+  const std::string path = write_file("rheo_mu_i.toml", R"(
+[rheology]
+yield = "dp"
+friction_angle = 22.5
+viscosity = "mu_i"
+mu_inf = 0.65
+I0 = 0.3
+d = 7e-4
+eta_min = 0.002
+eta_max = 2.5
+r_factor = 0.5
+theta_per_dt = 20
+fp_tol = 1e-8
+fp_max_iter = 80
+[boundary.bottom]
+friction_angle = 18.5
+[boundary.left]
+friction_angle = 10
+)");
+  const auto a = load_case(path, {"time.dt=5e-4"});
+  const auto& rh = a.rheology;
+  EXPECT_EQ(rh.yield, gf::CaseConfig::Yield::DruckerPrager);
+  EXPECT_EQ(rh.viscosity, gf::CaseConfig::Viscosity::MuI);
+  EXPECT_DOUBLE_EQ(rh.friction_angle_deg, 22.5);
+  EXPECT_DOUBLE_EQ(rh.mu_inf, 0.65);
+  EXPECT_DOUBLE_EQ(rh.I0, 0.3);
+  EXPECT_DOUBLE_EQ(rh.d, 7e-4);
+  EXPECT_DOUBLE_EQ(rh.eta_min, 0.002);
+  EXPECT_DOUBLE_EQ(rh.eta_max, 2.5);
+  EXPECT_DOUBLE_EQ(rh.r_factor, 0.5);
+  EXPECT_DOUBLE_EQ(rh.theta_per_dt, 20);
+  EXPECT_DOUBLE_EQ(rh.fp_tol, 1e-8);
+  EXPECT_EQ(rh.fp_max_iter, 80);
+  EXPECT_DOUBLE_EQ(a.walls[gf::CaseConfig::kBottom].friction_angle_deg, 18.5);
+  EXPECT_DOUBLE_EQ(a.walls[gf::CaseConfig::kLeft].friction_angle_deg, 10);
+  EXPECT_DOUBLE_EQ(a.walls[gf::CaseConfig::kRight].friction_angle_deg, 0);
+  EXPECT_TRUE(a.warnings.empty());
+
+  const std::string resolved = (scratch() / "rheo_resolved.toml").string();
+  ASSERT_EQ(gf::write_resolved_case(a, resolved), "");
+  const auto b = load_case(resolved, {});
+  EXPECT_TRUE(a == b);
+  EXPECT_EQ(a.resolved_toml, b.resolved_toml);
+  EXPECT_NE(a.resolved_toml.find("[rheology]\n"), std::string::npos);
+  EXPECT_NE(a.resolved_toml.find("\nyield = \"dp\"\n"), std::string::npos);
+  EXPECT_NE(a.resolved_toml.find("\nfp_max_iter = 80\n"), std::string::npos);
+  EXPECT_NE(a.resolved_toml.find("\nfriction_angle = 18.5\n"), std::string::npos);
+  EXPECT_NE(a.resolved_toml.find("# unit: degrees | allowed: in [0, 90) | default: 0"),
+            std::string::npos);
+  // operator== sees every new member.
+  auto c = b;
+  c.rheology.fp_tol = 1e-7;
+  EXPECT_FALSE(a == c);
+  c = b;
+  c.walls[gf::CaseConfig::kTop].friction_angle_deg = 1;
+  EXPECT_FALSE(a == c);
+
+  const std::string d = gf::describe_case(a, 1);
+  EXPECT_NE(d.find("Drucker-Prager (dp): kappa = tan(alpha) p^+ (eq. 19), alpha = 22.5 deg, "
+                   "tan alpha = 0.4142"),
+            std::string::npos)
+      << d;
+  EXPECT_NE(d.find("viscosity mu(I) (eq. 11): mu_inf = 0.65"), std::string::npos) << d;
+  // theta = 20 /s x 5e-4 s = 0.01.
+  EXPECT_NE(d.find("theta = theta_per_dt x first dt = 20 /s x 0.0005 s = 0.01"), std::string::npos)
+      << d;
+  EXPECT_NE(d.find("left 10 deg (tan 0.1763), bottom 18.5 deg (tan 0.3346)"), std::string::npos)
+      << d;
+  // rho_s |g| H = 1550 x 9.81 x 0.14 = 2129 Pa.
+  EXPECT_NE(d.find("pressure scale rho_s |g| H = 2129 Pa"), std::string::npos) << d;
+  EXPECT_NE(d.find("Bingham number Bi = kappa H / (eta(I) U)"), std::string::npos) << d;
+}
+
+TEST(CaseFile, BinghamIsDescribedWithItsBinghamNumber) {
+  const auto c = load_case(
+      write_file("rheo_bingham.toml", "[rheology]\nyield = \"bingham\"\ntau_y = 50\n"), {});
+  EXPECT_EQ(c.rheology.yield, gf::CaseConfig::Yield::Bingham);
+  const std::string d = gf::describe_case(c, 1);
+  EXPECT_NE(d.find("Bingham (bingham): kappa = tau_y = 50 Pa"), std::string::npos) << d;
+  // Bi = tau_y H / (eta U) = 50 x 0.14 / (0.5 x sqrt(9.81 x 0.14)) = 11.95.
+  EXPECT_NE(d.find("Bingham number Bi = kappa H / (eta_gran U) = 11.95"), std::string::npos) << d;
+  EXPECT_EQ(d.find("pressure scale"), std::string::npos) << d;
 }
 
 TEST(CaseFile, SetGridNChangesTheDerivedNx) {

@@ -1,0 +1,232 @@
+// The plastic part of the prediction step (eq. 31): the divergence of kappa S on the faces, the
+// Coulomb wall tractions, the strain rate D(u~) that drives the projections of eqs. 29-30, and
+// the wall projection. The cell projection of S lives in rheology/.
+#include <algorithm>
+#include <cmath>
+
+#include "core/Error.hpp"
+#include "momentum/Momentum.hpp"
+#include "operators/Operators.hpp"
+#include "rheology/Rheology.hpp"
+
+namespace gf::momentum {
+
+namespace {
+void to_local(DM dm, Vec global, Vec local) {
+  GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, local));
+  GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, local));
+}
+// Local copy of a global Vec, destroyed with the object.
+struct Local {
+  DM dm;
+  Vec v = nullptr;
+  Local(DM d, Vec global) : dm(d) {
+    GF_PETSC(DMCreateLocalVector(dm, &v));
+    to_local(dm, global, v);
+  }
+  ~Local() { VecDestroy(&v); }
+};
+}  // namespace
+
+bool Predictor::has_wall_friction() const {
+  return std::any_of(tan_b_.begin(), tan_b_.end(), [](double t) { return t > 0; });
+}
+
+void Predictor::set_phase(Vec phi) {
+  to_local(g_.dm_cell(), phi, lphi_);
+  have_phase_ = true;
+}
+
+bool Predictor::coulomb_face(const PetscScalar* const* ph, int side, PetscInt i, PetscInt j) const {
+  if (!ph || tan_b_[side] <= 0) return false;
+  const Box& b = g_.box();
+  switch (side) {
+    case 0: return j >= 1 && i == 0 && 0.5 * (ph[j - 1][0] + ph[j][0]) < 0;
+    case 1: return j >= 1 && i == b.nx - 1 && 0.5 * (ph[j - 1][i] + ph[j][i]) < 0;
+    case 2: return i >= 1 && j == 0 && 0.5 * (ph[0][i - 1] + ph[0][i]) < 0;
+    case 3: return i >= 1 && j == b.ny - 1 && 0.5 * (ph[j][i - 1] + ph[j][i]) < 0;
+  }
+  return false;
+}
+
+void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) {
+  const Box& b = g_.box();
+  Local lk(g_.dm_cell(), kappa), ls(g_.dm_ten(), S);
+  const PetscScalar** k;
+  const PetscScalar*** s;  // [j][i][c]
+  const PetscScalar** ph = nullptr;
+  const Vel **kb, **sw;
+  Vel** out;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lk.v, &k));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), ls.v, &s));
+  if (have_phase_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &ph));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), kappa_b, &kb));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), s_wall, &sw));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), rhs, &out));
+  const PetscInt nx = b.nx, ny = b.ny;
+  auto kS = [&](PetscInt i, PetscInt j, int c) { return k[j][i] * s[j][i][c]; };
+  // kappa Sxy at the node (i, j) = (i hx, j hy): mean of the four cells around an interior node.
+  auto node = [&](PetscInt i, PetscInt j) {
+    return 0.25 * (kS(i - 1, j - 1, 1) + kS(i, j - 1, 1) + kS(i - 1, j, 1) + kS(i, j, 1));
+  };
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if (i >= 1) {  // x-momentum on the face (i, j)
+        double f = (kS(i, j, 0) - kS(i - 1, j, 0)) / b.hx;
+        // top node (i, j+1)
+        double tt;
+        if (j + 1 < ny) tt = node(i, j + 1);
+        else if (coulomb_face(ph, 3, i, j)) tt = -kb[j][i].u * sw[j][i].u;
+        else tt = bc_.top.type == WallType::NoSlip ? 0.5 * (kS(i - 1, j, 1) + kS(i, j, 1)) : 0.0;
+        // bottom node (i, j): the stress there is minus the wall traction on the fluid
+        double tb;
+        if (j >= 1) tb = node(i, j);
+        else if (coulomb_face(ph, 2, i, j)) tb = kb[j][i].u * sw[j][i].u;
+        else tb = bc_.bottom.type == WallType::NoSlip ? 0.5 * (kS(i - 1, j, 1) + kS(i, j, 1)) : 0.0;
+        out[j][i].u += f + (tt - tb) / b.hy;
+      }
+      if (j >= 1) {  // y-momentum on the face (i, j)
+        double f = (kS(i, j, 2) - kS(i, j - 1, 2)) / b.hy;
+        double tr;
+        if (i + 1 < nx) tr = node(i + 1, j);
+        else if (coulomb_face(ph, 1, i, j)) tr = -kb[j][i].v * sw[j][i].v;
+        else tr = bc_.right.type == WallType::NoSlip ? 0.5 * (kS(i, j - 1, 1) + kS(i, j, 1)) : 0.0;
+        double tl;
+        if (i >= 1) tl = node(i, j);
+        else if (coulomb_face(ph, 0, i, j)) tl = kb[j][i].v * sw[j][i].v;
+        else tl = bc_.left.type == WallType::NoSlip ? 0.5 * (kS(i, j - 1, 1) + kS(i, j, 1)) : 0.0;
+        out[j][i].v += f + (tr - tl) / b.hx;
+      }
+    }
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), rhs, &out));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), s_wall, &sw));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), kappa_b, &kb));
+  if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), ls.v, &s));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lk.v, &k));
+}
+
+void Predictor::strain_rate(Vec vel, Vec eta, Vec D) {
+  const Box& b = g_.box();
+  to_local(g_.dm_vel(), vel, lvel_);
+  Local le(g_.dm_cell(), eta);
+  Vel** v;
+  const PetscScalar** e;
+  const PetscScalar** ph = nullptr;
+  PetscScalar*** d;
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), lvel_, &v));
+  fill_velocity_ghosts(g_, v);
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), le.v, &e));
+  if (have_phase_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &ph));
+  GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), D, &d));
+  const PetscInt nx = b.nx, ny = b.ny;
+  // Wall velocity seen by the first face at distance d from a wall (see boundary/Boundary.hpp).
+  auto wall_u = [&](const WallBC& w, double uc, double eta_w, double dist, bool coulomb) {
+    if (coulomb || w.type == WallType::FreeSlip) return uc;
+    if (w.type == WallType::NoSlip) return w.velocity;
+    return eta_w * uc / (eta_w + w.eta_b * dist);
+  };
+  // Engineering shear rate du/dy + dv/dx at the node (i, j).
+  auto gamma = [&](PetscInt i, PetscInt j) -> double {
+    const bool wx = (i == 0 || i == nx), wy = (j == 0 || j == ny);
+    if (wx && wy) return 0.0;  // corner
+    if (!wx && !wy)
+      return (v[j][i].u - v[j - 1][i].u) / b.hy + (v[j][i].v - v[j][i - 1].v) / b.hx;
+    if (wy) {  // bottom or top wall: v = 0 along it, du/dy from the wall velocity
+      const bool bottom = (j == 0);
+      const PetscInt jc = bottom ? 0 : ny - 1;
+      const double uc = v[jc][i].u;
+      const double ew = 0.5 * (e[jc][i - 1] + e[jc][i]);
+      const double uw = wall_u(bottom ? bc_.bottom : bc_.top, uc, ew, 0.5 * b.hy,
+                               coulomb_face(ph, bottom ? 2 : 3, i, jc));
+      return bottom ? (uc - uw) / (0.5 * b.hy) : (uw - uc) / (0.5 * b.hy);
+    }
+    const bool left = (i == 0);  // left or right wall: dv/dx from the wall velocity
+    const PetscInt ic = left ? 0 : nx - 1;
+    const double vc = v[j][ic].v;
+    const double ew = 0.5 * (e[j - 1][ic] + e[j][ic]);
+    const double vw = wall_u(left ? bc_.left : bc_.right, vc, ew, 0.5 * b.hx,
+                             coulomb_face(ph, left ? 0 : 1, ic, j));
+    return left ? (vc - vw) / (0.5 * b.hx) : (vw - vc) / (0.5 * b.hx);
+  };
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double dxx = (v[j][i + 1].u - v[j][i].u) / b.hx;
+      const double dyy = (v[j + 1][i].v - v[j][i].v) / b.hy;
+      const double dxy =
+          0.125 * (gamma(i, j) + gamma(i + 1, j) + gamma(i, j + 1) + gamma(i + 1, j + 1));
+      d[j][i][0] = dxx;
+      d[j][i][1] = dxy;
+      d[j][i][2] = dyy;
+    }
+  GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), D, &d));
+  if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), le.v, &e));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &v));
+}
+
+void Predictor::wall_yield(Vec p, Vec kappa_b) {
+  const Box& b = g_.box();
+  const PetscScalar** pa;
+  const PetscScalar** ph = nullptr;
+  Vel** kb;
+  Local lp(g_.dm_cell(), p);
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lp.v, &pa));
+  if (have_phase_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &ph));
+  GF_PETSC(VecSet(kappa_b, 0.0));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), kappa_b, &kb));
+  auto pos = [](double x) { return x > 0 ? x : 0.0; };
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if (coulomb_face(ph, 2, i, j)) kb[j][i].u = tan_b_[2] * pos(0.5 * (pa[j][i - 1] + pa[j][i]));
+      if (coulomb_face(ph, 3, i, j)) kb[j][i].u = tan_b_[3] * pos(0.5 * (pa[j][i - 1] + pa[j][i]));
+      if (coulomb_face(ph, 0, i, j)) kb[j][i].v = tan_b_[0] * pos(0.5 * (pa[j - 1][i] + pa[j][i]));
+      if (coulomb_face(ph, 1, i, j)) kb[j][i].v = tan_b_[1] * pos(0.5 * (pa[j - 1][i] + pa[j][i]));
+    }
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), kappa_b, &kb));
+  if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lp.v, &pa));
+}
+
+double Predictor::update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,
+                              double a0dt, double theta, double r_factor) {
+  const Box& b = g_.box();
+  const Vel **u, **kb, **sn;
+  Vel** sw;
+  const PetscScalar **r, **e;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), u_tilde, &u));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), kappa_b, &kb));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), s_wall_n, &sn));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), s_wall, &sw));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), rho, &r));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), eta, &e));
+  double change = 0;
+  // eq. 31, wall line: s <- P_b(s + r_b kappa_b u_t + theta (s^n - s)); r_b from the compliance
+  // of the first face velocity to a wall traction (inertia rho a0 h/dt and viscosity 2 eta/h).
+  auto upd = [&](double& s, double s_n, double k, double ut, double rc, double ec, double h) {
+    if (k <= 0) {
+      s = 0.0;
+      return;
+    }
+    const double rb = r_factor * (rc * a0dt * h + 2.0 * ec / h) / (k * k);
+    const double snew = rheology::project_b(s + rb * k * ut + theta * (s_n - s));
+    change = std::max(change, std::abs(snew - s));
+    s = snew;
+  };
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if ((j == 0 || j == b.ny - 1) && i >= 1)
+        upd(sw[j][i].u, sn[j][i].u, kb[j][i].u, u[j][i].u, r[j][i], e[j][i], b.hy);
+      if ((i == 0 || i == b.nx - 1) && j >= 1)
+        upd(sw[j][i].v, sn[j][i].v, kb[j][i].v, u[j][i].v, r[j][i], e[j][i], b.hx);
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), eta, &e));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), rho, &r));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), s_wall, &sw));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), s_wall_n, &sn));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), kappa_b, &kb));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), u_tilde, &u));
+  return g_.max(change);
+}
+
+}  // namespace gf::momentum

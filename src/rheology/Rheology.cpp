@@ -1,0 +1,128 @@
+#include "rheology/Rheology.hpp"
+
+#include <vector>
+
+#include "core/Error.hpp"
+
+namespace gf::rheology {
+
+void hydrostatic_pressure(const Grid& g, Vec c, double rho_s, double g_abs, Vec out) {
+  const Box& b = g.box();
+  const PetscScalar** ca;
+  PetscScalar** pa;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), c, &ca));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), out, &pa));
+  // Local column sums of this rank's rows.
+  std::vector<double> local(b.xm, 0.0), above(b.xm, 0.0);
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) local[i - b.xs] += ca[j][i] * b.hy;
+  // Ranks in the same process column (same x range), ordered from the top down, so that an
+  // exclusive prefix sum gives the thickness held by the ranks above.
+  MPI_Comm col;
+  MPI_Comm_split(g.comm(), static_cast<int>(b.xs), -static_cast<int>(b.ys), &col);
+  MPI_Exscan(local.data(), above.data(), static_cast<int>(b.xm), MPI_DOUBLE, MPI_SUM, col);
+  int crank = 0;
+  MPI_Comm_rank(col, &crank);
+  if (crank == 0) std::fill(above.begin(), above.end(), 0.0);  // Exscan leaves rank 0 undefined
+  MPI_Comm_free(&col);
+  for (PetscInt i = b.xs; i < b.xe(); ++i) {
+    double acc = above[i - b.xs];  // thickness above the top of this rank's rows
+    for (PetscInt j = b.ye() - 1; j >= b.ys; --j) {
+      const double own = ca[j][i] * b.hy;
+      pa[j][i] = rho_s * g_abs * (acc + 0.5 * own);  // to the cell centre
+      acc += own;
+    }
+  }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), out, &pa));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), c, &ca));
+}
+
+}  // namespace gf::rheology
+
+namespace gf::rheology {
+
+double update_plastic(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec kappa, Vec D, Vec rho,
+                      Vec eta, double a0dt, double theta) {
+  const Box& b = g.box();
+  PetscScalar*** s;
+  const PetscScalar ***sn, ***d;
+  const PetscScalar **k, **r, **e;
+  GF_PETSC(DMDAVecGetArrayDOF(g.dm_ten(), S, &s));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g.dm_ten(), S_n, &sn));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g.dm_ten(), D, &d));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), kappa, &k));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), rho, &r));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), eta, &e));
+  const double h2 = std::min(b.hx, b.hy) * std::min(b.hx, b.hy);
+  double change = 0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      double* sc = s[j][i];
+      if (k[j][i] <= 0) {
+        sc[0] = sc[1] = sc[2] = 0.0;
+        continue;
+      }
+      const double rk = r_local(pr, k[j][i], e[j][i], r[j][i] * a0dt * h2) * k[j][i];
+      // The deviatoric part of D: in the plane, incompressibility makes D traceless only up
+      // to the solver tolerance; the projection acts on the traceless part.
+      const double dxx = 0.5 * (d[j][i][0] - d[j][i][2]);
+      double sxx = sc[0] + rk * dxx + theta * (sn[j][i][0] - sc[0]);
+      double sxy = sc[1] + rk * d[j][i][1] + theta * (sn[j][i][1] - sc[1]);
+      project(sxx, sxy);
+      change = std::max(change, std::hypot(sxx - sc[0], sxy - sc[1]));
+      sc[0] = sxx;
+      sc[1] = sxy;
+      sc[2] = -sxx;
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), eta, &e));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), rho, &r));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), kappa, &k));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g.dm_ten(), D, &d));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g.dm_ten(), S_n, &sn));
+  GF_PETSC(DMDAVecRestoreArrayDOF(g.dm_ten(), S, &s));
+  return g.max(change);
+}
+
+void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Vec kappa) {
+  const Box& b = g.box();
+  const PetscScalar **ph, **pa, **ph_hyd = nullptr;
+  PetscScalar** k;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), phi, &ph));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), p, &pa));
+  if (pr.yield == Yield::Hydrostatic) GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), p_hyd, &ph_hyd));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), kappa, &k));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      double kv = 0;
+      if (ph[j][i] < 0) {
+        switch (pr.yield) {
+          case Yield::None: kv = 0; break;
+          case Yield::Bingham: kv = pr.tau_y; break;
+          case Yield::DruckerPrager: kv = pr.tan_alpha * std::max(pa[j][i], 0.0); break;
+          case Yield::Hydrostatic: kv = pr.tan_alpha * std::max(ph_hyd[j][i], 0.0); break;
+        }
+      }
+      k[j][i] = kv;
+    }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), kappa, &k));
+  if (ph_hyd) GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), p_hyd, &ph_hyd));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), p, &pa));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &ph));
+}
+
+void tensor_norm(const Grid& g, Vec L, Vec out) {
+  const Box& b = g.box();
+  const PetscScalar*** l;
+  PetscScalar** o;
+  GF_PETSC(DMDAVecGetArrayDOFRead(g.dm_ten(), L, &l));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), out, &o));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double* c = l[j][i];
+      o[j][i] = std::sqrt(0.5 * (c[0] * c[0] + 2 * c[1] * c[1] + c[2] * c[2]));
+    }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), out, &o));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g.dm_ten(), L, &l));
+}
+
+}  // namespace gf::rheology
