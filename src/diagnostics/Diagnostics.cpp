@@ -107,4 +107,25 @@ double max_in_granular(const Grid& g, Vec field, Vec phi) {
   return m == -std::numeric_limits<double>::infinity() ? 0.0 : m;
 }
 
+std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec phi, double eps) {
+  const Box& b = g.box();
+  LocalVelocity v(g, vel);
+  const PetscScalar** ph;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), phi, &ph));
+  double acc[3] = {0, 0, 0}, tot[3] = {0, 0, 0};
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double w = 1.0 - levelset::heaviside(ph[j][i], eps);
+      double uc, vc;
+      cell_centre_velocity(v, i, j, uc, vc);
+      acc[0] += w * uc;
+      acc[1] += w * vc;
+      acc[2] += w;
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &ph));
+  MPI_Allreduce(acc, tot, 3, MPI_DOUBLE, MPI_SUM, g.comm());
+  if (tot[2] <= 0) return {0.0, 0.0};
+  return {tot[0] / tot[2], tot[1] / tot[2]};
+}
+
 }  // namespace gf::diag

@@ -21,6 +21,8 @@
 // round-off, not bit for bit.
 #include <petscvec.h>
 
+#include <array>
+
 #include "grid/Grid.hpp"
 
 namespace gf::diag {
@@ -45,5 +47,10 @@ double granular_volume(const Grid& g, Vec phi, double eps);
 // Largest value of the cell field `field` over the granular cells (phi < 0), e.g. the
 // viscosity or the pressure in the pile; 0 when no cell is granular. Both on dm_cell.
 double max_in_granular(const Grid& g, Vec field, Vec phi);
+
+// Mean velocity of the granular phase, sum (1 - H_eps(phi)) u_c / sum (1 - H_eps(phi)) over the
+// cells (cell-centred velocity as in max_speed), m/s: the velocity of a rigid granular block.
+// {0, 0} if there is no granular cell.
+std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec phi, double eps);
 
 }  // namespace gf::diag

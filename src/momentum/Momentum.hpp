@@ -67,10 +67,10 @@ class Predictor {
   // in component u at (i, 0) / (i, ny-1); the left / right wall value of the v-face (0, j) /
   // (nx-1, j) in component v at (0, j) / (nx-1, j). Faces without Coulomb friction or not
   // granular hold 0.
-  // kappa_b = tan(alpha_b) (-T_n)^+ with -T_n taken as the pressure p^n of the adjacent cell
-  // (the normal viscous stress vanishes at a wall where u.n = 0 and the tangential velocity is
-  // uniform along it); explicit in the fixed point.
-  void wall_yield(Vec p, Vec kappa_b);
+  // kappa_b = tan(alpha_b) (-T_n)^+ (eq. 22), -T_n = p^n - 2 eta D_nn - kappa S_nn at the cells
+  // next to the wall (the normal stress on the wall, with the current D(u~) and S: it is
+  // updated in every iteration of the fixed point, as kappa_b^{n+1} in eq. 31).
+  void wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b);
   // s_t <- P_b(s_t + r_b kappa_b u_t + theta (s_t^n - s_t)) on the granular Coulomb faces (eq. 31),
   // r_b = r_factor (rho a0 h / dt + 2 eta / h) / kappa_b^2. Returns max |change| (collective).
   double update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,

@@ -165,26 +165,42 @@ void Predictor::strain_rate(Vec vel, Vec eta, Vec D) {
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &v));
 }
 
-void Predictor::wall_yield(Vec p, Vec kappa_b) {
+void Predictor::wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b) {
   const Box& b = g_.box();
-  const PetscScalar** pa;
   const PetscScalar** ph = nullptr;
   Vel** kb;
-  Local lp(g_.dm_cell(), p);
+  Local lp(g_.dm_cell(), p), lk(g_.dm_cell(), kappa), le(g_.dm_cell(), eta), ls(g_.dm_ten(), S),
+      ld(g_.dm_ten(), D);
+  const PetscScalar **pa, **k, **e;
+  const PetscScalar ***sa, ***da;
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lp.v, &pa));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lk.v, &k));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), le.v, &e));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), ls.v, &sa));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), ld.v, &da));
   if (have_phase_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &ph));
   GF_PETSC(VecSet(kappa_b, 0.0));
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), kappa_b, &kb));
+  // -T_n = p - T'_nn with T'_nn = 2 eta D_nn + kappa S_nn, the deviatoric normal stress along
+  // the wall normal (yy at the bottom and top, xx at the left and right), at a cell next to
+  // the wall. In a rigid zone p alone is not the normal load: S carries part of it.
+  auto mT = [&](PetscInt i, PetscInt j, int c) {
+    return pa[j][i] - 2.0 * e[j][i] * da[j][i][c] - k[j][i] * sa[j][i][c];
+  };
   auto pos = [](double x) { return x > 0 ? x : 0.0; };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      if (coulomb_face(ph, 2, i, j)) kb[j][i].u = tan_b_[2] * pos(0.5 * (pa[j][i - 1] + pa[j][i]));
-      if (coulomb_face(ph, 3, i, j)) kb[j][i].u = tan_b_[3] * pos(0.5 * (pa[j][i - 1] + pa[j][i]));
-      if (coulomb_face(ph, 0, i, j)) kb[j][i].v = tan_b_[0] * pos(0.5 * (pa[j - 1][i] + pa[j][i]));
-      if (coulomb_face(ph, 1, i, j)) kb[j][i].v = tan_b_[1] * pos(0.5 * (pa[j - 1][i] + pa[j][i]));
+      if (coulomb_face(ph, 2, i, j)) kb[j][i].u = tan_b_[2] * pos(0.5 * (mT(i - 1, j, 2) + mT(i, j, 2)));
+      if (coulomb_face(ph, 3, i, j)) kb[j][i].u = tan_b_[3] * pos(0.5 * (mT(i - 1, j, 2) + mT(i, j, 2)));
+      if (coulomb_face(ph, 0, i, j)) kb[j][i].v = tan_b_[0] * pos(0.5 * (mT(i, j - 1, 0) + mT(i, j, 0)));
+      if (coulomb_face(ph, 1, i, j)) kb[j][i].v = tan_b_[1] * pos(0.5 * (mT(i, j - 1, 0) + mT(i, j, 0)));
     }
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), kappa_b, &kb));
   if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), ld.v, &da));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), ls.v, &sa));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), le.v, &e));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lk.v, &k));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lp.v, &pa));
 }
 

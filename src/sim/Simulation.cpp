@@ -56,7 +56,7 @@ RunSummary Simulation::run() {
 
   io::CsvWriter csv(rc_.out_dir + "/diagnostics.csv",
                     {"t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed",
-                     "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
+                     "granular_u", "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
                      "fp_change"},
                     g_.comm());
   io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes);
@@ -83,8 +83,9 @@ RunSummary Simulation::run() {
     const double vchange = vol0 > 0 ? 100.0 * (vol - vol0) / vol0 : 0.0;
     const double div = diag::max_divergence(g_, s_.vel);
     max_div_run = std::max(max_div_run, div);
+    const auto gu = diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
     csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
-             diag::max_speed(g_, s_.vel), diag::kinetic_energy(g_, s_.vel, s_.rho), div,
+             diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
              static_cast<double>(last.fp_iters), last.fp_change});
     probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta);

@@ -145,7 +145,9 @@ void Stepper::update_yield(State& s) {
     rheology::hydrostatic_pressure(g_, gran_, cfg_.rho_gran, std::abs(cfg_.gravity[1]) > 0 ? std::abs(cfg_.gravity[1]) : gabs, p_hyd_);
   }
   rheology::yield_stress(g_, cfg_.rheo, s.phi, s.p, p_hyd_, kappa_);
-  predictor_->wall_yield(s.p, kappa_b_);
+  // The wall yield from the state at t^n; refreshed in every fixed-point iteration.
+  predictor_->strain_rate(s.vel, s.eta, D_);
+  predictor_->wall_yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
 }
 
 void Stepper::derived_fields(State& s, Vec Dnorm, Vec Snorm, Vec yielded) {
@@ -265,6 +267,8 @@ StepStats Stepper::step(State& s, double dt) {
       predictor_->strain_rate(u_tilde_, s.eta, D_);
       double ch = rheology::update_plastic(g_, cfg_.rheo, s.S, S_n_, kappa_, D_, s.rho, s.eta,
                                            c.a0 / dt, theta);
+      if (predictor_->has_wall_friction())
+        predictor_->wall_yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
       ch = std::max(ch, predictor_->update_wall(u_tilde_, kappa_b_, s.s_wall, sw_n_, s.rho, s.eta,
                                                 c.a0 / dt, theta, cfg_.rheo.r_factor));
       st.fp_iters = k;
