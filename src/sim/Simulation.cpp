@@ -151,7 +151,7 @@ RunSummary Simulation::run() {
       while (next_vtk <= s_.t + tiny) next_vtk += rc_.vtk_interval;
     }
     const double now = wall_now();
-    if (root && now - last_progress >= rc_.progress_interval) {
+    if (root && rc_.progress_interval > 0 && now - last_progress >= rc_.progress_interval) {
       const double rate = (s_.step - step0) / (now - t0);
       const double eta_s = (rc_.t_end - s_.t) / dt / std::max(rate, 1e-30);
       std::fprintf(stderr, "t = %.4f s  dt = %.3e s  step %lld  %.1f steps/s  ETA %.0f s\n",
