@@ -16,15 +16,17 @@ void to_local(DM dm, Vec global, Vec local) {
   GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, local));
   GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, local));
 }
-// Local copy of a global Vec, destroyed with the object.
+// Ghosted copy of a global Vec for the duration of a scope, from the DM's pool of local vectors
+// (DMGetLocalVector: no allocation after the first use, as these run in every fixed-point
+// iteration).
 struct Local {
   DM dm;
   Vec v = nullptr;
   Local(DM d, Vec global) : dm(d) {
-    GF_PETSC(DMCreateLocalVector(dm, &v));
+    GF_PETSC(DMGetLocalVector(dm, &v));
     to_local(dm, global, v);
   }
-  ~Local() { VecDestroy(&v); }
+  ~Local() { DMRestoreLocalVector(dm, &v); }
 };
 }  // namespace
 
