@@ -110,6 +110,26 @@ void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Ve
   GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &ph));
 }
 
+void project_field(const Grid& g, Vec S, Vec kappa) {
+  const Box& b = g.box();
+  PetscScalar*** s;
+  const PetscScalar** k;
+  GF_PETSC(DMDAVecGetArrayDOF(g.dm_ten(), S, &s));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), kappa, &k));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      double* c = s[j][i];
+      if (k[j][i] <= 0) {
+        c[0] = c[1] = c[2] = 0.0;
+        continue;
+      }
+      project(c[0], c[1]);
+      c[2] = -c[0];
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), kappa, &k));
+  GF_PETSC(DMDAVecRestoreArrayDOF(g.dm_ten(), S, &s));
+}
+
 void tensor_norm(const Grid& g, Vec L, Vec out) {
   const Box& b = g.box();
   const PetscScalar*** l;

@@ -88,6 +88,10 @@ double update_plastic(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec kappa
 // p: the latest pressure p^n; p_hyd: only read for Yield::Hydrostatic.
 void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Vec kappa);
 
+// P applied to every cell of S (dm_ten), and S = 0 where kappa = 0: keeps an extrapolated
+// iterate (Anderson) inside the set |S| <= 1 of eq. 29.
+void project_field(const Grid& g, Vec S, Vec kappa);
+
 // |L| of a dm_ten field at the cell centres (modified Frobenius norm), into a dm_cell Vec.
 void tensor_norm(const Grid& g, Vec L, Vec out);
 

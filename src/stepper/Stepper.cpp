@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/Error.hpp"
 #include "levelset/Heaviside.hpp"
+#include "stepper/Anderson.hpp"
 #include "levelset/LevelSet.hpp"
 #include "levelset/PrescribedFlow.hpp"
 #include "momentum/Momentum.hpp"
@@ -29,6 +31,13 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   PetscBool mon = PETSC_FALSE;
   GF_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-fp_monitor", &mon, nullptr));
   fp_monitor_ = mon;
+  // -fp_anderson m: depth of the Anderson acceleration of the fixed point (0 = plain Picard
+  // iteration as in the paper). Same fixed point either way.
+  PetscInt m = 5;
+  GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-fp_anderson", &m, nullptr));
+  GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &gS_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &gW_));
+  if (plastic_ && m > 0) anderson_ = std::make_unique<Anderson>(std::vector<Vec>{gS_, gW_}, m);
   if (fp_monitor_) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs0_mon_));
   for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_}) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
   for (Vec* v : {&D_, &S_n_}) GF_PETSC(DMCreateGlobalVector(g.dm_ten(), v));
@@ -43,7 +52,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
 
 Stepper::~Stepper() {
   for (Vec* v : {&eta_node_, &rhs_, &u_tilde_, &lphi_, &kappa_, &kappa_b_, &D_, &S_n_, &sw_n_,
-                 &rhs0_, &p_hyd_, &gran_, &eta_s_, &rhs0_mon_})
+                 &rhs0_, &p_hyd_, &gran_, &eta_s_, &rhs0_mon_, &gS_, &gW_})
     VecDestroy(v);
 }
 
@@ -253,6 +262,8 @@ StepStats Stepper::step(State& s, double dt) {
     GF_PETSC(VecCopy(s.S, S_n_));
     GF_PETSC(VecCopy(s.s_wall, sw_n_));
     const double theta = std::min(0.5, cfg_.rheo.theta_per_dt * dt);
+    if (anderson_) anderson_->reset();
+    double last_ch = std::numeric_limits<double>::infinity();
     for (int k = 1; k <= cfg_.rheo.fp_max_iter; ++k) {
       GF_PETSC(VecCopy(rhs0_, rhs_));
       predictor_->add_plastic(kappa_, s.S, kappa_b_, s.s_wall, rhs_);
@@ -265,18 +276,43 @@ StepStats Stepper::step(State& s, double dt) {
         GF_PETSC(VecNorm(u_tilde_, NORM_INFINITY, &un));
       }
       predictor_->strain_rate(u_tilde_, s.eta, D_);
-      double ch = rheology::update_plastic(g_, cfg_.rheo, s.S, S_n_, kappa_, D_, s.rho, s.eta,
+      // G(x): the projections of eq. 31 applied to the current iterate x = (S, s_t).
+      GF_PETSC(VecCopy(s.S, gS_));
+      GF_PETSC(VecCopy(s.s_wall, gW_));
+      double ch = rheology::update_plastic(g_, cfg_.rheo, gS_, S_n_, kappa_, D_, s.rho, s.eta,
                                            c.a0 / dt, theta);
-      if (predictor_->has_wall_friction())
-        predictor_->wall_yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
-      ch = std::max(ch, predictor_->update_wall(u_tilde_, kappa_b_, s.s_wall, sw_n_, s.rho, s.eta,
-                                                c.a0 / dt, theta, cfg_.rheo.r_factor));
+      if (predictor_->has_wall_friction()) {
+        predictor_->wall_yield(s.p, gS_, kappa_, D_, s.eta, kappa_b_);
+        ch = std::max(ch, predictor_->update_wall(u_tilde_, kappa_b_, gW_, sw_n_, s.rho, s.eta,
+                                                  c.a0 / dt, theta, cfg_.rheo.r_factor));
+      }
       st.fp_iters = k;
       st.fp_change = ch;
       if (fp_monitor_)
         PetscPrintf(g_.comm(), "  fixed point step %lld iteration %d change %.6e  |du~| %.3e m/s (max |u~| %.3e)\n",
                     s.step + 1, k, ch, (double)du, (double)un);
-      if (ch < cfg_.rheo.fp_tol) break;
+      // Safeguard: the projections make the map non-smooth (active sets change); when the
+      // residual grows, the extrapolation is dropped (history reset) and the plain step taken.
+      const bool grew = ch > last_ch;
+      last_ch = ch;
+      if (ch < cfg_.rheo.fp_tol || !anderson_ || grew) {
+        if (anderson_ && grew) anderson_->reset();
+        GF_PETSC(VecCopy(gS_, s.S));
+        GF_PETSC(VecCopy(gW_, s.s_wall));
+        if (ch < cfg_.rheo.fp_tol) break;
+        continue;
+      }
+      // Anderson mixing of the last iterates, then back into |S| <= 1, |s_t| <= 1.
+      anderson_->update({s.S, s.s_wall}, {gS_, gW_});
+      rheology::project_field(g_, s.S, kappa_);
+      {
+        PetscInt n;
+        PetscScalar* w;
+        GF_PETSC(VecGetLocalSize(s.s_wall, &n));
+        GF_PETSC(VecGetArray(s.s_wall, &w));
+        for (PetscInt q = 0; q < n; ++q) w[q] = rheology::project_b(w[q]);
+        GF_PETSC(VecRestoreArray(s.s_wall, &w));
+      }
     }
     st.fp_capped = st.fp_change >= cfg_.rheo.fp_tol;
   }

@@ -84,7 +84,9 @@ class Stepper {
   double assembled_a0dt_ = -1;  // a0/dt of the assembled viscous matrix, 1/s
   bool plastic_ = false;
   bool fp_monitor_ = false;
-  Vec rhs0_mon_ = nullptr;  // previous u~ for -fp_monitor  // a yield stress or wall friction: the fixed point of eq. 31 runs
+  Vec rhs0_mon_ = nullptr;  // previous u~ for -fp_monitor
+  Vec gS_ = nullptr, gW_ = nullptr;  // G(x) of the fixed point: projected S and s_t
+  std::unique_ptr<class Anderson> anderson_;  // a yield stress or wall friction: the fixed point of eq. 31 runs
   Vec kappa_ = nullptr, kappa_b_ = nullptr, D_ = nullptr, S_n_ = nullptr, sw_n_ = nullptr,
       rhs0_ = nullptr, p_hyd_ = nullptr, gran_ = nullptr, eta_s_ = nullptr;
   void update_yield(State& s);
