@@ -68,10 +68,11 @@ int run_or_check(const Args& a, int argc_all, char** argv_all, int petsc_argc, c
   }
   std::string out = a.out_dir;
   if (out.empty()) out = "out/" + std::filesystem::path(a.case_file).stem().string();
-  gf::Grid grid(PETSC_COMM_WORLD, c.nx, c.ny, c.domain.Lx, c.domain.Ly);
+  gf::Grid grid(PETSC_COMM_WORLD, c.nx, c.ny, c.domain.Lx, c.domain.Ly, c.periodic_x);
   if (rank == 0) write_provenance(c, out, argc_all, argv_all, size);
   gf::State state(grid);
   gf::initial_levelset(grid, c, state.phi);
+  gf::initial_velocity(grid, c, state.vel, state.vel_old);
   gf::Stepper stepper(grid, gf::physics_from_case(c));
   gf::Simulation sim(grid, state, stepper, gf::run_from_case(c, out));
   if (rank == 0)

@@ -22,6 +22,7 @@ namespace {
 const std::vector<std::string> kDtModes{"adaptive", "fixed"};
 const std::vector<std::string> kShapes{"none", "rectangle", "layer", "circle", "zalesak"};
 const std::vector<std::string> kPrescribed{"none", "rotation", "single_vortex"};
+const std::vector<std::string> kInitialVelocities{"none", "vortex"};
 const std::vector<std::string> kWalls{"free_slip", "no_slip", "navier"};
 const std::vector<std::string> kProbeFields{"phi", "rho", "u", "v", "speed", "p", "eta"};
 const std::vector<std::string> kSides{"left", "right", "bottom", "top"};
@@ -70,6 +71,9 @@ std::string probe_name_rule(const std::string& s) {
 const char* to_string(CaseConfig::DtMode v) { return kDtModes[static_cast<int>(v)].c_str(); }
 const char* to_string(CaseConfig::Shape v) { return kShapes[static_cast<int>(v)].c_str(); }
 const char* to_string(CaseConfig::Prescribed v) { return kPrescribed[static_cast<int>(v)].c_str(); }
+const char* to_string(CaseConfig::InitialVelocity v) {
+  return kInitialVelocities[static_cast<int>(v)].c_str();
+}
 const char* to_string(CaseConfig::Wall v) { return kWalls[static_cast<int>(v)].c_str(); }
 const char* to_string(CaseConfig::ProbeField v) {
   return kProbeFields[static_cast<int>(v)].c_str();
@@ -82,7 +86,7 @@ bool CaseConfig::operator==(const CaseConfig& o) const {
   return title == o.title && domain == o.domain && nx == o.nx && ny == o.ny && hx == o.hx &&
          hy == o.hy && time == o.time && gravity == o.gravity && granular == o.granular &&
          air == o.air && rheology == o.rheology && levelset == o.levelset && initial == o.initial &&
-         flow == o.flow && walls == o.walls && output == o.output && solver == o.solver &&
+         flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && output == o.output && solver == o.solver &&
          probes == o.probes;
 }
 
@@ -198,6 +202,16 @@ Params case_params() {
   p.add_real("initial.slot_width", "m", 0.05, Range::gt(0), "zalesak: slot width.");
   p.add_real("initial.slot_depth", "m", 0.25, Range::gt(0),
              "zalesak: slot depth, from the bottom of the disc.");
+  p.add_enum("initial.velocity", "none", kInitialVelocities,
+             "Initial velocity: none = at rest; vortex = one divergence-free cell from the "
+             "stream function psi = A (Lx/pi) sin^2(pi x/Lx) sin^2(pi y/Ly) (with "
+             "boundary.periodic_x: psi = A (Ly/pi) sin(2 pi x/Lx) sin^2(pi y/Ly)) sampled at "
+             "the nodes, u = dpsi/dy, v = -dpsi/dx by node differences: exactly divergence "
+             "free, zero normal velocity on the walls, and zero tangential velocity on the walls "
+             "(compatible with no_slip). A cessation test for viscoplastic fluids.");
+  p.add_real("initial.velocity_amplitude", "m/s", 0.0, Range::any(),
+             "vortex: amplitude A: the peak of v with walls (u peaks at A Lx/Ly), the peak of "
+             "u with periodic_x (v peaks at 2 A Ly/Lx).");
 
   p.add_enum("flow.prescribed", "none", kPrescribed,
              "none: solve the momentum equations. Otherwise a level-set-only test with a "
@@ -228,6 +242,12 @@ Params case_params() {
                "touches this wall, Coulomb friction kappa_b = tan(alpha_b) (-T_n)^+ (eqs. "
                "22-23, 30) replaces `type`; where air touches it, `type` applies.");
   }
+
+  p.add_bool("boundary.periodic_x", false,
+             "The domain repeats in x (period Lx): no left/right walls; the boundary.left / "
+             "boundary.right settings are then ignored (a non-zero friction_angle or velocity "
+             "there is an error, any other setting a warning). The initial shapes must still "
+             "lie inside the domain. For plane Poiseuille, inclined-layer and Bagnold flows.");
 
   p.add_real("output.interval", "s", 0.01, Range::gt(0),
              "Simulated time between diagnostics and probe samples.");
@@ -347,6 +367,9 @@ CaseConfig fill(const Params& p) {
   in.radius = p.get_real("initial.radius");
   in.slot_width = p.get_real("initial.slot_width");
   in.slot_depth = p.get_real("initial.slot_depth");
+  in.velocity =
+      enum_of<CaseConfig::InitialVelocity>(kInitialVelocities, p.get_string("initial.velocity"));
+  in.velocity_amplitude = p.get_real("initial.velocity_amplitude");
 
   c.flow.prescribed = enum_of<Prescribed>(kPrescribed, p.get_string("flow.prescribed"));
   c.flow.omega = p.get_real("flow.omega");
@@ -361,6 +384,7 @@ CaseConfig fill(const Params& p) {
     c.walls[s].velocity = p.get_real(b + "velocity");
     c.walls[s].friction_angle_deg = p.get_real(b + "friction_angle");
   }
+  c.periodic_x = p.get_bool("boundary.periodic_x");
 
   c.output.interval = p.get_real("output.interval");
   c.output.vtk_interval = p.get_real("output.vtk_interval");
@@ -559,9 +583,28 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
     }
   }
 
+  // Periodic x: there are no left/right walls. A wall speed or a friction angle there would be
+  // physics silently dropped (an error); their type and eta_b are only ignored (a warning).
+  const bool periodic = ok({"boundary.periodic_x"}) && c.periodic_x;
+  const auto x_wall = [](std::size_t s) { return s == CaseConfig::kLeft || s == CaseConfig::kRight; };
+  if (periodic)
+    for (std::size_t s : {std::size_t{CaseConfig::kLeft}, std::size_t{CaseConfig::kRight}}) {
+      const std::string b = "boundary." + kSides[s] + ".";
+      const std::string why = ": boundary.periodic_x = true: there is no " + kSides[s] + " wall";
+      if (ok({b + "velocity"}) && c.walls[s].velocity != 0)
+        errors.add(p.where(b + "velocity") + why + " to move: must be 0");
+      if (ok({b + "friction_angle"}) && c.walls[s].friction_angle_deg != 0)
+        errors.add(p.where(b + "friction_angle") + why + " to rub on: must be 0");
+      for (const char* k : {"type", "eta_b"})
+        if (p.is_set(b + k))
+          c.warnings.push_back(b + k + " is set but boundary.periodic_x = true: there is no " +
+                               kSides[s] + " wall, ignored");
+    }
+
   // Walls. A free-slip wall carries no tangential stress, so a wall velocity would be
   // silently ignored there.
   for (std::size_t s = 0; s < kSides.size(); ++s) {
+    if (periodic && x_wall(s)) continue;  // reported above
     const std::string b = "boundary." + kSides[s] + ".";
     if (ok({b + "type", b + "velocity"}) && c.walls[s].type == CaseConfig::Wall::FreeSlip &&
         c.walls[s].velocity != 0)
@@ -642,6 +685,7 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
                            " is ignored: flow.prescribed = " + to_string(c.flow.prescribed) +
                            " does not solve the momentum equations");
     for (std::size_t s = 0; s < kSides.size(); ++s) {
+      if (periodic && x_wall(s)) continue;
       const std::string k = "boundary." + kSides[s] + ".friction_angle";
       if (yield_ok && ok({k}) && c.walls[s].friction_angle_deg > 0 && rh.yield == Yield::None)
         c.warnings.push_back(k + " = " + format_number(c.walls[s].friction_angle_deg) +
@@ -650,7 +694,23 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
     }
   }
 
+  // Initial velocity.
+  using IV = CaseConfig::InitialVelocity;
+  if (ok({"initial.velocity", "initial.velocity_amplitude"})) {
+    if (c.initial.velocity == IV::Vortex && c.initial.velocity_amplitude == 0)
+      errors.add(p.where("initial.velocity_amplitude") +
+                 ": initial.velocity = \"vortex\" needs an amplitude: must be non-zero (m/s)");
+    if (c.initial.velocity == IV::None && p.is_set("initial.velocity_amplitude"))
+      c.warnings.push_back(
+          "initial.velocity_amplitude is set but initial.velocity = none does not use it");
+  }
+  if (ok({"initial.velocity", "flow.prescribed"}) && !momentum && c.initial.velocity != IV::None)
+    errors.add(p.where("initial.velocity") + ": flow.prescribed = " +
+               to_string(c.flow.prescribed) +
+               " sets the velocity at every step: must be \"none\"");
+
   if (ok({"physics.gravity"}) && momentum && c.gravity[0] == 0 && c.gravity[1] == 0 &&
+      c.initial.velocity == IV::None &&
       std::all_of(c.walls.begin(), c.walls.end(), [](const auto& w) { return w.velocity == 0; }))
     c.warnings.push_back("no gravity and no moving wall: nothing drives the flow");
 
@@ -804,6 +864,15 @@ Scale velocity_scale_of(const CaseConfig& c) {
       s.U = std::abs(c.walls[k].velocity);
       s.why = std::string("the ") + kSides[k] + " wall speed";
     }
+  if (c.initial.velocity == CaseConfig::InitialVelocity::Vortex) {
+    // Peak speed of the initial vortex (sim/Setup.hpp): max(|u|, |v|) of its stream function.
+    const double A = std::abs(c.initial.velocity_amplitude);
+    const double U = c.periodic_x ? A * std::max(1.0, 2 * Ly / Lx) : A * std::max(1.0, Lx / Ly);
+    if (U > s.U) {
+      s.U = U;
+      s.why = "the peak speed of the initial vortex (initial.velocity_amplitude)";
+    }
+  }
   return s;
 }
 
@@ -853,7 +922,10 @@ std::string rheology_text(const CaseConfig& c, double dt) {
                   g4(c.walls[k].tan_friction()) + ")";
   os << "walls      ";
   for (std::size_t k = 0; k < c.walls.size(); ++k)
-    os << (k ? ", " : "") << kSides[k] << " " << to_string(c.walls[k].type);
+    if (!c.periodic_x || k >= CaseConfig::kBottom)
+      os << (k && !(c.periodic_x && k == CaseConfig::kBottom) ? ", " : "") << kSides[k] << " "
+         << to_string(c.walls[k].type);
+  if (c.periodic_x) os << "; periodic in x (no left/right walls)";
   os << "\n           Coulomb friction where the granular phase touches: "
      << (friction.empty() ? "none" : friction) << "\n";
   return os.str();

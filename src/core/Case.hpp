@@ -20,6 +20,9 @@ struct CaseConfig {
   enum class DtMode { Adaptive, Fixed };
   enum class Shape { None, Rectangle, Layer, Circle, Zalesak };
   enum class Prescribed { None, Rotation, SingleVortex };
+  // Initial velocity field (initial.velocity): none = rest; vortex = a divergence-free cell
+  // from a stream function (sim/Setup.hpp), amplitude initial.velocity_amplitude.
+  enum class InitialVelocity { None, Vortex };
   // Same enumerators, same order as gf::WallType in boundary/Boundary.hpp (core/ may not
   // include a lower layer), so static_cast<WallType>(wall.type) is the conversion.
   enum class Wall { FreeSlip, NoSlip, Navier };
@@ -64,6 +67,8 @@ struct CaseConfig {
     double height = 0;                      // m, layer
     double cx = 0, cy = 0, radius = 0;      // m, circle and Zalesak disc
     double slot_width = 0, slot_depth = 0;  // m, Zalesak slot
+    InitialVelocity velocity = InitialVelocity::None;
+    double velocity_amplitude = 0;  // m/s, peak speed scale of the initial vortex
     bool operator==(const Initial&) const = default;
   };
   struct Flow {
@@ -133,6 +138,7 @@ struct CaseConfig {
   Initial initial;
   Flow flow;
   std::array<WallConfig, 4> walls{};  // indexed by Side
+  bool periodic_x = false;            // boundary.periodic_x: no left/right walls, x repeats
   Output output;
   Solver solver;
   std::vector<Probe> probes;
@@ -179,6 +185,7 @@ double initial_dt(const CaseConfig& c);
 const char* to_string(CaseConfig::DtMode v);
 const char* to_string(CaseConfig::Shape v);
 const char* to_string(CaseConfig::Prescribed v);
+const char* to_string(CaseConfig::InitialVelocity v);
 const char* to_string(CaseConfig::Wall v);
 const char* to_string(CaseConfig::ProbeField v);
 const char* to_string(CaseConfig::Yield v);

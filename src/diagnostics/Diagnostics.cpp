@@ -64,7 +64,8 @@ double kinetic_energy(const Grid& g, Vec vel, Vec rho) {
 double max_divergence(const Grid& g, Vec vel) {
   const Box& b = g.box();
   // The ghost exchange brings u_{i+1} / v_{j+1} owned by the right / upper neighbour; the
-  // wall faces i = nx / j = ny are not stored and come as zeros from fill_velocity_ghosts.
+  // wall faces i = nx / j = ny are not stored and come as zeros from fill_velocity_ghosts
+  // (with periodic x, the face nx is the wrapped face 0 from the ghost exchange).
   LocalVelocity v(g, vel);
   MaxAcc acc;
   acc.m = 0.0;

@@ -56,7 +56,8 @@ using LocalCells = LocalArray<PetscScalar>;
 
 // The ghosted velocity with the wall faces set by fill_velocity_ghosts(): u on faces i = 0 and
 // i = nx, v on faces j = 0 and j = ny are zero (eq. 20), so a cell's right/top face can be
-// read as v[j][i+1].u / v[j+1][i].v for every owned cell, including i = nx-1 and j = ny-1.
+// read as v[j][i+1].u / v[j+1][i].v for every owned cell, including i = nx-1 and j = ny-1
+// (with periodic x, u on face nx is the wrapped face 0).
 class LocalVelocity : public LocalArray<Vel> {
  public:
   LocalVelocity(const Grid& g, Vec vel) : LocalArray<Vel>(g.dm_vel(), vel) {

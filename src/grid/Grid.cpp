@@ -7,7 +7,8 @@
 
 namespace gf {
 
-Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly) : comm_(comm) {
+Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool periodic_x)
+    : comm_(comm) {
   if (nx < 8 || ny < 8) throw InputError("grid: nx and ny must be >= 8");
   MPI_Comm_rank(comm, &rank_);
   MPI_Comm_size(comm, &size_);
@@ -17,9 +18,12 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly) : comm
   box_.Ly = Ly;
   box_.hx = Lx / nx;
   box_.hy = Ly / ny;
+  box_.periodic_x = periodic_x;
 
+  // Periodic x: the ghost exchange wraps (cell -1 <- cell nx-1, ...), see Grid.hpp.
+  const DMBoundaryType bx = periodic_x ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
   const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
-  GF_PETSC(DMDACreate2d(comm, bt, bt, DMDA_STENCIL_BOX, nx, ny, PETSC_DECIDE, PETSC_DECIDE, 1,
+  GF_PETSC(DMDACreate2d(comm, bx, bt, DMDA_STENCIL_BOX, nx, ny, PETSC_DECIDE, PETSC_DECIDE, 1,
                         kGhost, nullptr, nullptr, &dm_cell_));
   GF_PETSC(DMSetUp(dm_cell_));
   // All other DMs copy the cell DM's parallel layout so that (i, j) is owned by the same rank.
@@ -34,15 +38,17 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly) : comm
     if (ly[r] < kGhost) throw InputError("grid: too many ranks in y for ny = " + std::to_string(ny));
 
   auto make = [&](PetscInt dof, DMDAStencilType st, PetscInt w, DM* dm) {
-    GF_PETSC(DMDACreate2d(comm, bt, bt, st, nx, ny, px, py, dof, w, lx, ly, dm));
+    GF_PETSC(DMDACreate2d(comm, bx, bt, st, nx, ny, px, py, dof, w, lx, ly, dm));
     GF_PETSC(DMSetUp(*dm));
   };
   make(2, DMDA_STENCIL_BOX, kGhost, &dm_vel_);
   make(3, DMDA_STENCIL_BOX, 1, &dm_ten_);
   make(1, DMDA_STENCIL_STAR, 1, &dm_pres_);
   make(2, DMDA_STENCIL_BOX, 1, &dm_visc_);
-  GF_PETSC(DMDASetUniformCoordinates(dm_cell_, 0.5 * box_.hx, Lx - 0.5 * box_.hx, 0.5 * box_.hy,
-                                     Ly - 0.5 * box_.hy, 0, 0));
+  // Cell centres. A periodic DMDA spaces its coordinates by (xmax - xmin)/nx, not /(nx - 1).
+  GF_PETSC(DMDASetUniformCoordinates(dm_cell_, 0.5 * box_.hx,
+                                     periodic_x ? Lx + 0.5 * box_.hx : Lx - 0.5 * box_.hx,
+                                     0.5 * box_.hy, Ly - 0.5 * box_.hy, 0, 0));
   GF_PETSC(DMDAGetCorners(dm_cell_, &box_.xs, &box_.ys, nullptr, &box_.xm, &box_.ym, nullptr));
 }
 
@@ -76,19 +82,20 @@ void fill_velocity_ghosts(const Grid& g, Vel** vel) {
   // Ghost range of this rank's local array. Outside-domain points exist only on ranks that
   // touch the wall, and those own at least kGhost cells there, so mirrors are local.
   const PetscInt gx0 = b.xs - G, gx1 = b.xe() + G, gy0 = b.ys - G, gy1 = b.ye() + G;
+  // With periodic x the x ghosts are wrapped copies from the exchange: never outside.
   for (PetscInt j = gy0; j < gy1; ++j)
     for (PetscInt i = gx0; i < gx1; ++i) {
-      const bool outx = i < 0 || i >= b.nx, outy = j < 0 || j >= b.ny;
+      const bool outx = !b.periodic_x && (i < 0 || i >= b.nx), outy = j < 0 || j >= b.ny;
       if (!outx && !outy) continue;
-      const PetscInt im = i < 0 ? -1 - i : (i >= b.nx ? 2 * b.nx - 1 - i : i);
+      const PetscInt im = !outx ? i : (i < 0 ? -1 - i : 2 * b.nx - 1 - i);
       const PetscInt jm = j < 0 ? -1 - j : (j >= b.ny ? 2 * b.ny - 1 - j : j);
       // Normal components beyond a wall are zero (the wall face i = nx / j = ny is eq. 20);
       // tangential ones are even mirrors, finite but never used by wall-aware kernels.
       vel[j][i].u = outx ? 0.0 : vel[jm][i].u;
       vel[j][i].v = outy ? 0.0 : vel[j][im].v;
     }
-  // Wall faces stored in the owned range: i = 0 (u) and j = 0 (v).
-  if (b.xs == 0)
+  // Wall faces stored in the owned range: i = 0 (u, unless periodic) and j = 0 (v).
+  if (b.xs == 0 && !b.periodic_x)
     for (PetscInt j = gy0; j < gy1; ++j) vel[j][0].u = 0.0;
   if (b.ys == 0)
     for (PetscInt i = gx0; i < gx1; ++i) vel[0][i].v = 0.0;

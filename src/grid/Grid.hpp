@@ -11,6 +11,12 @@
 //    i = nx (u) and j = 0, j = ny (v) carry zero normal velocity: faces i = 0 / j = 0 are
 //    stored and kept at 0, faces i = nx / j = ny live in the ghost layer of local vectors
 //    (DM_BOUNDARY_GHOSTED) and are filled with 0 by fill_velocity_ghosts().
+//  * periodic x (Box::periodic_x, boundary.periodic_x): every DM is DM_BOUNDARY_PERIODIC in x,
+//    so the x ghosts of local vectors hold the wrapped values (cell -1 is cell nx-1, face nx is
+//    face 0) and kernels read them with unwrapped indices; the u-face i = 0 is then an ordinary
+//    interior face (the same as face nx), there are no left/right walls, and the node (0, j) is
+//    an interior node. MatSetValuesStencil wraps column indices -1 / nx likewise. Kernels ask
+//    the Box (wall_u, has_cell_x, has_uface) instead of testing i == 0 / i + 1 < nx.
 // Arrays from DMDAVecGetArray are indexed [j][i] with global indices.
 #include <petscdmda.h>
 
@@ -28,7 +34,15 @@ struct Box {
   PetscInt nx = 0, ny = 0;                  // global cells
   double hx = 0, hy = 0;                    // cell size, m
   double Lx = 0, Ly = 0;                    // domain size, m
+  bool periodic_x = false;                  // the domain repeats in x: no left/right walls
   PetscInt xe() const { return xs + xm; }
+  // x-direction topology (see the storage convention above). For i within the ghost width:
+  //  wall_u(i): the u-face i is a left/right wall (i <= 0 or i >= nx, never if periodic);
+  //  has_cell_x(i): cell column i exists (in the domain, or its periodic image);
+  //  has_uface(i): u-face i exists (0 <= i <= nx, walls included, or its periodic image).
+  bool wall_u(PetscInt i) const { return !periodic_x && (i <= 0 || i >= nx); }
+  bool has_cell_x(PetscInt i) const { return periodic_x || (i >= 0 && i < nx); }
+  bool has_uface(PetscInt i) const { return periodic_x || (i >= 0 && i <= nx); }
   PetscInt ye() const { return ys + ym; }
   double xc(PetscInt i) const { return (i + 0.5) * hx; }  // cell centre x, m
   double yc(PetscInt j) const { return (j + 0.5) * hy; }  // cell centre y, m
@@ -40,7 +54,8 @@ class Grid {
  public:
   static constexpr PetscInt kGhost = 3;  // WENO5 needs 3 cells on each side
 
-  Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly);
+  // periodic_x: DM_BOUNDARY_PERIODIC in x for every DM (boundary.periodic_x).
+  Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool periodic_x = false);
   ~Grid();
   Grid(const Grid&) = delete;
   Grid& operator=(const Grid&) = delete;
@@ -49,6 +64,7 @@ class Grid {
   const Box& box() const { return box_; }
   PetscInt nx() const { return box_.nx; }
   PetscInt ny() const { return box_.ny; }
+  bool periodic_x() const { return box_.periodic_x; }
   double hx() const { return box_.hx; }
   double hy() const { return box_.hy; }
   int rank() const { return rank_; }
@@ -76,7 +92,8 @@ class Grid {
 // Sets the normal velocity on the four walls of a LOCAL (ghosted) velocity array to zero:
 // faces i = 0 and i = nx for u, j = 0 and j = ny for v (eq. 20). Tangential ghost values
 // outside the domain are set to NaN-free copies (mirror), never used by kernels that drop
-// order at walls, but kept finite so no NaN can leak.
+// order at walls, but kept finite so no NaN can leak. With periodic x the x ghosts hold the
+// wrapped values of the ghost exchange and are left alone (only the bottom/top are walls).
 void fill_velocity_ghosts(const Grid& g, Vel** vel);
 
 }  // namespace gf

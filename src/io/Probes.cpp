@@ -21,12 +21,18 @@ constexpr const char* kNames[] = {"phi", "rho", "u", "v", "speed", "p", "eta"};
 
 // Position along one axis of a field sampled at (k + off) h, k = 0..n-1: the lower sample
 // index k0 and the weight w of sample k0 + 1. Clamping s to [0, n-1] holds the value constant
-// between the outermost sample and the wall.
+// between the outermost sample and the wall. On a periodic axis there is no wall: k0 may be -1
+// or n - 1 (reading the wrapped ghosts, sample n = sample 0).
 struct Axis {
   PetscInt k0;
   double w;
 };
-Axis axis(double x, double h, double off, PetscInt n) {
+Axis axis(double x, double h, double off, PetscInt n, bool periodic = false) {
+  if (periodic) {
+    const double s = x / h - off;
+    const auto k0 = static_cast<PetscInt>(std::floor(s));
+    return {k0, s - k0};
+  }
   const double s = std::clamp(x / h - off, 0.0, static_cast<double>(n - 1));
   const PetscInt k0 = std::min(static_cast<PetscInt>(std::floor(s)), n - 2);
   return {k0, s - k0};
@@ -137,11 +143,12 @@ void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta) {
     for (std::size_t k = 0; k < pr.x.size(); ++k, at += pr.q.size()) {
       if (!pr.mine[k]) continue;
       const double x = pr.x[k], y = pr.y[k];
-      const Axis cx = axis(x, b.hx, 0.5, b.nx), cy = axis(y, b.hy, 0.5, b.ny);
+      const Axis cx = axis(x, b.hx, 0.5, b.nx, b.periodic_x), cy = axis(y, b.hy, 0.5, b.ny);
       double u = 0, w = 0;
       if (v) {
         const diag::LocalVelocity& vv = *v;
-        u = bilinear(axis(x, b.hx, 0.0, b.nx + 1), cy,
+        // periodic x: the u-faces are nx samples with period nx (face nx = face 0)
+        u = bilinear(axis(x, b.hx, 0.0, b.periodic_x ? b.nx : b.nx + 1, b.periodic_x), cy,
                      [&](PetscInt j, PetscInt i) { return vv[j][i].u; });
         w = bilinear(cx, axis(y, b.hy, 0.0, b.ny + 1),
                      [&](PetscInt j, PetscInt i) { return vv[j][i].v; });

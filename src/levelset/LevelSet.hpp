@@ -8,6 +8,8 @@
 // on grid.dm_vel(). Ghost cells OUTSIDE the physical domain are never read for phi: near a wall
 // every stencil drops in order instead ("reducing the order of the schemes in the neighborhood
 // of a boundary without adding ghost points", section 3.1).
+// With a periodic x direction (Box::periodic_x) there is no wall in x: the x stencils keep
+// their full order and read the wrapped ghosts filled by the ghost exchange.
 #include <petscdmda.h>
 
 #include <vector>
@@ -107,7 +109,7 @@ class Redistancer {
 // sign and by 8x8 midpoint sub-sampling per bilinear patch where it changes sign.
 //  _cell: K = cell (i, j);
 //  _node: K = dual cell of node (i, j) at (i hx, j hy), 0 <= i <= nx, 0 <= j <= ny, clipped to
-//         the domain at walls.
+//         the domain at walls (with periodic x, node 0 is interior and its K wraps).
 // phi_local: LOCAL (ghosted) array; the stencil is cells i-1..i+1 / i-1..i.
 double height_fraction_cell(const Box& b, const PetscScalar* const* phi_local, PetscInt i,
                             PetscInt j);

@@ -11,29 +11,19 @@ namespace gf::levelset {
 
 namespace {
 
-// Face velocities from node values of the stream function (see the header): divergence free to
-// round-off in every cell, zero on the wall faces.
-template <class Psi>
-void velocity_from_stream_function(const Grid& g, Vec vel, const Psi& psi) {
-  const Box& b = g.box();
-  Vel** v;
-  GF_PETSC(DMDAVecGetArray(g.dm_vel(), vel, &v));
-  for (PetscInt j = b.ys; j < b.ye(); ++j)
-    for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      const double p00 = psi(b.xf(i), b.yf(j));
-      v[j][i].u = i == 0 ? 0.0 : (psi(b.xf(i), b.yf(j + 1)) - p00) / b.hy;
-      v[j][i].v = j == 0 ? 0.0 : -(psi(b.xf(i + 1), b.yf(j)) - p00) / b.hx;
-    }
-  GF_PETSC(DMDAVecRestoreArray(g.dm_vel(), vel, &v));
-}
-
+// Signed distances at the cell centres. With periodic x the shape repeats with period Lx: the
+// signed distance to the union of its images x - Lx, x, x + Lx (exact for a shape inside the
+// domain, whose images do not overlap) is the smallest of the three.
 template <class F>
 void fill_cells(const Grid& g, Vec phi, const F& f) {
   const Box& b = g.box();
   PetscScalar** p;
   GF_PETSC(DMDAVecGetArray(g.dm_cell(), phi, &p));
   for (PetscInt j = b.ys; j < b.ye(); ++j)
-    for (PetscInt i = b.xs; i < b.xe(); ++i) p[j][i] = f(b.xc(i), b.yc(j));
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double x = b.xc(i), y = b.yc(j);
+      p[j][i] = b.periodic_x ? std::min({f(x - b.Lx, y), f(x, y), f(x + b.Lx, y)}) : f(x, y);
+    }
   GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), phi, &p));
 }
 

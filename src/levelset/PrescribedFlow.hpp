@@ -10,11 +10,31 @@
 // cancel), which is what a projected velocity (eq. 28) provides the transport scheme. psi is
 // constant along the walls, so the wall normal velocity (eq. 20) is zero as well; the wall faces
 // are also set to exactly 0 as the grid convention requires.
+#include <petscdmda.h>
 #include <petscvec.h>
 
+#include "core/Error.hpp"
 #include "grid/Grid.hpp"
 
 namespace gf::levelset {
+
+// Face velocities of the global dm_vel Vec vel from psi(x, y) (m^2/s) sampled at the nodes, as
+// above: divergence free to round-off in every cell; the wall faces (u at i = 0 unless x is
+// periodic, v at j = 0) are set to exactly 0. With periodic x, psi must be periodic in x for
+// the face nx (= face 0) to see the same velocity from both sides.
+template <class Psi>
+void velocity_from_stream_function(const Grid& g, Vec vel, const Psi& psi) {
+  const Box& b = g.box();
+  Vel** v;
+  GF_PETSC(DMDAVecGetArray(g.dm_vel(), vel, &v));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double p00 = psi(b.xf(i), b.yf(j));
+      v[j][i].u = b.wall_u(i) ? 0.0 : (psi(b.xf(i), b.yf(j + 1)) - p00) / b.hy;
+      v[j][i].v = j == 0 ? 0.0 : -(psi(b.xf(i + 1), b.yf(j)) - p00) / b.hx;
+    }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_vel(), vel, &v));
+}
 
 // (a) Solid-body rotation about (cx, cy) with angular velocity omega (rad/s, counter-clockwise
 // for omega > 0) for distances r <= r_solid from the centre, brought smoothly (C1 in the
@@ -40,7 +60,8 @@ double zalesak_distance(double x, double y, double cx, double cy, double r, doub
                         double slot_depth);
 double rectangle_distance(double x, double y, double x0, double x1, double y0, double y1);
 
-// Initial level sets at the cell centres of the global Vec phi (dm_cell).
+// Initial level sets at the cell centres of the global Vec phi (dm_cell). With periodic x the
+// shape is repeated with period Lx (the distance to the nearest image).
 void init_circle(const Grid& g, Vec phi, double cx, double cy, double r);
 void init_zalesak(const Grid& g, Vec phi, double cx, double cy, double r, double slot_width,
                   double slot_depth);

@@ -24,14 +24,17 @@ constexpr int kL1Samples = 16;    // same for the interface error
 
 // The bilinear interpolant of cell-centre values on the patch whose lower-left centre is
 // (i0, j0). In the half cells along a wall the patch is the nearest in-domain one, i.e. phi is
-// linearly extrapolated from in-domain centres (no ghost cell outside the domain is read).
+// linearly extrapolated from in-domain centres (no ghost cell outside the domain is read). With
+// periodic x there is no wall in x: the patch may start at cell -1 or end at cell nx (the wrapped
+// ghosts), and x may lie outside [0, Lx] by up to half a cell (the dual cell of node 0).
 struct Patch {
   const Box* b;
   PetscInt i0, j0;
   double f00, f10, f01, f11;
 
   Patch(const Box& box, const PetscScalar* const* p, double x, double y) : b(&box) {
-    i0 = std::clamp<PetscInt>(static_cast<PetscInt>(std::floor(x / box.hx - 0.5)), 0, box.nx - 2);
+    const auto ix = static_cast<PetscInt>(std::floor(x / box.hx - 0.5));
+    i0 = box.periodic_x ? ix : std::clamp<PetscInt>(ix, 0, box.nx - 2);
     j0 = std::clamp<PetscInt>(static_cast<PetscInt>(std::floor(y / box.hy - 0.5)), 0, box.ny - 2);
     f00 = p[j0][i0];
     f10 = p[j0][i0 + 1];
@@ -117,8 +120,10 @@ double height_fraction_cell(const Box& b, const PetscScalar* const* phi_local, P
 
 double height_fraction_node(const Box& b, const PetscScalar* const* phi_local, PetscInt i,
                             PetscInt j) {
-  // The dual cell [x_i - hx/2, x_i + hx/2] x [...] around the node, clipped to the domain.
-  const double x0 = std::max(0.0, (i - 0.5) * b.hx), x1 = std::min(b.Lx, (i + 0.5) * b.hx);
+  // The dual cell [x_i - hx/2, x_i + hx/2] x [...] around the node, clipped to the domain (not
+  // in a periodic x: the node 0 is interior, its dual cell straddles the wrapped seam).
+  const double x0 = b.periodic_x ? (i - 0.5) * b.hx : std::max(0.0, (i - 0.5) * b.hx);
+  const double x1 = b.periodic_x ? (i + 0.5) * b.hx : std::min(b.Lx, (i + 0.5) * b.hx);
   const double y0 = std::max(0.0, (j - 0.5) * b.hy), y1 = std::min(b.Ly, (j + 0.5) * b.hy);
   return theta_rect(b, phi_local, x0, x1, y0, y1);
 }

@@ -20,7 +20,7 @@
 // dropped from (R2) (no information enters through a wall: the distance to an interface inside a
 // convex domain is carried by characteristics that leave through the walls), and the ENO
 // correction in (R3) is dropped (first order) when one of its second differences would need such
-// a cell.
+// a cell. A periodic x direction has no walls: the stencils read the wrapped ghosts.
 #include <algorithm>
 #include <cmath>
 
@@ -37,17 +37,19 @@ inline double minmod(double a, double b) {
   return std::abs(a) < std::abs(b) ? a : b;
 }
 
+using detail::Line;
+
 // Undivided second difference of the line at cell k, if its three cells are in the domain.
 template <class At>
-inline bool d2(const At& at, PetscInt k, PetscInt n, double& out) {
-  if (k < 1 || k > n - 2) return false;
+inline bool d2(const At& at, PetscInt k, const Line& n, double& out) {
+  if (!n.has(k - 1) || !n.has(k + 1)) return false;
   out = at(k - 1) - 2 * at(k) + at(k + 1);
   return true;
 }
 
 // (R4) ENO minmod of the second differences at cells k1, k2; 0 (first order) near walls.
 template <class At>
-inline double eno_d2(const At& at, PetscInt k1, PetscInt k2, PetscInt n) {
+inline double eno_d2(const At& at, PetscInt k1, PetscInt k2, const Line& n) {
   double a, b;
   if (!d2(at, k1, n, a) || !d2(at, k2, n, b)) return 0.0;
   return minmod(a, b);
@@ -58,7 +60,7 @@ inline double eno_d2(const At& at, PetscInt k1, PetscInt k2, PetscInt n) {
 //   p(s) = p_c + (p_n - p_c) s + (D/2) s (s - 1),  D = minmod(Dxx phi0_c, Dxx phi0_n),
 // in units of h (Min 2010, sec. 3); linear interpolation where D vanishes or is unavailable.
 template <class At>
-inline double interface_distance(const At& at, PetscInt c, int dir, PetscInt n, double h) {
+inline double interface_distance(const At& at, PetscInt c, int dir, const Line& n, double h) {
   const double pc = at(c), pn = at(c + dir);
   const double D = eno_d2(at, c, c + dir, n);
   double s = pc / (pc - pn);  // linear
@@ -83,17 +85,17 @@ inline std::size_t cell_index(const Box& b, PetscInt i, PetscInt j) {
 // One direction's contribution |phi_x|^2 to (R2), with (R3)/(R4). at(k): phi along the line,
 // c: the cell, dm/dp: subcell distances towards c-1 / c+1 (< 0: no interface that way).
 template <class At>
-inline double godunov_1d(const At& at, PetscInt c, PetscInt n, double h, double dm, double dp,
+inline double godunov_1d(const At& at, PetscInt c, const Line& n, double h, double dm, double dp,
                          double sgn) {
   const double pc = at(c);
   double term = 0;
-  if (c >= 1) {  // a = D-x phi_c
+  if (n.has(c - 1)) {  // a = D-x phi_c
     const double m = eno_d2(at, c, c - 1, n);
     const double a = dm > 0 ? pc / dm + 0.5 * dm * m / (h * h) : (pc - at(c - 1) + 0.5 * m) / h;
     const double up = sgn > 0 ? std::max(a, 0.0) : std::min(a, 0.0);
     term = std::max(term, up * up);
   }
-  if (c <= n - 2) {  // b = D+x phi_c
+  if (n.has(c + 1)) {  // b = D+x phi_c
     const double m = eno_d2(at, c, c + 1, n);
     const double bb = dp > 0 ? -pc / dp - 0.5 * dp * m / (h * h) : (at(c + 1) - pc - 0.5 * m) / h;
     const double up = sgn > 0 ? std::min(bb, 0.0) : std::max(bb, 0.0);
@@ -129,6 +131,7 @@ void Redistancer::prepare(Vec phi0) {
   const PetscScalar* const* p;
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), loc_, &p));
   const double h = std::min(b.hx, b.hy);
+  const Line lx = detail::x_line(b), ly = detail::y_line(b);
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       const std::size_t k = cell_index(b, i, j);
@@ -136,10 +139,10 @@ void Redistancer::prepare(Vec phi0) {
       sgn_[k] = pc > 0 ? 1.0 : (pc < 0 ? -1.0 : 0.0);
       auto atx = [&](PetscInt m) { return p[j][m]; };
       auto aty = [&](PetscInt m) { return p[m][i]; };
-      dxm_[k] = i >= 1 && pc * p[j][i - 1] < 0 ? interface_distance(atx, i, -1, b.nx, b.hx) : -1;
-      dxp_[k] = i <= b.nx - 2 && pc * p[j][i + 1] < 0 ? interface_distance(atx, i, 1, b.nx, b.hx) : -1;
-      dym_[k] = j >= 1 && pc * p[j - 1][i] < 0 ? interface_distance(aty, j, -1, b.ny, b.hy) : -1;
-      dyp_[k] = j <= b.ny - 2 && pc * p[j + 1][i] < 0 ? interface_distance(aty, j, 1, b.ny, b.hy) : -1;
+      dxm_[k] = lx.has(i - 1) && pc * p[j][i - 1] < 0 ? interface_distance(atx, i, -1, lx, b.hx) : -1;
+      dxp_[k] = lx.has(i + 1) && pc * p[j][i + 1] < 0 ? interface_distance(atx, i, 1, lx, b.hx) : -1;
+      dym_[k] = ly.has(j - 1) && pc * p[j - 1][i] < 0 ? interface_distance(aty, j, -1, ly, b.hy) : -1;
+      dyp_[k] = ly.has(j + 1) && pc * p[j + 1][i] < 0 ? interface_distance(aty, j, 1, ly, b.hy) : -1;
       double hl = h;
       for (double d : {dxm_[k], dxp_[k], dym_[k], dyp_[k]})
         if (d > 0) hl = std::min(hl, d);
@@ -156,6 +159,7 @@ void Redistancer::eval_rhs(Vec phi) {
   PetscScalar** r;
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), loc_, &p));
   GF_PETSC(DMDAVecGetArray(g_.dm_cell(), rhs_, &r));
+  const Line lx = detail::x_line(b), ly = detail::y_line(b);
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       const std::size_t k = cell_index(b, i, j);
@@ -166,8 +170,8 @@ void Redistancer::eval_rhs(Vec phi) {
       }
       auto atx = [&](PetscInt m) { return p[j][m]; };
       auto aty = [&](PetscInt m) { return p[m][i]; };
-      const double gx = godunov_1d(atx, i, b.nx, b.hx, dxm_[k], dxp_[k], s);
-      const double gy = godunov_1d(aty, j, b.ny, b.hy, dym_[k], dyp_[k], s);
+      const double gx = godunov_1d(atx, i, lx, b.hx, dxm_[k], dxp_[k], s);
+      const double gy = godunov_1d(aty, j, ly, b.hy, dym_[k], dyp_[k], s);
       r[j][i] = -dtau_[k] * s * (std::sqrt(gx + gy) - 1.0);  // (R1) times the local step
     }
   GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), rhs_, &r));

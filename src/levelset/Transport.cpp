@@ -50,24 +50,25 @@ inline double weno3(double v1, double v2, double v3, double eps) {
   return (a0 * q0 + a1 * q1) / (a0 + a1);
 }
 
-// Face value for the interior face f (between cells f-1 and f, 1 <= f <= n-1) of a grid line of
-// n cells, upwind for the velocity sign. at(k) reads phi at cell k of the line (0 <= k < n only).
+// Face value for the interior face f (between cells f-1 and f, 1 <= f <= n-1, or any f on a
+// periodic line) of a grid line of n cells, upwind for the velocity sign. at(k) reads phi at cell
+// k of the line (0 <= k < n only, or the wrapped ghosts of a periodic line).
 // The stencil is the largest of WENO5 / WENO3 / first-order upwind whose cells all lie inside
 // the domain: the downwind cell always exists for an interior face, so WENO3 needs one more cell
 // upstream and WENO5 two more upstream and one more downstream. First-order upwind is used only
 // at the face next to a wall when the flow leaves that wall (no second upstream cell), where the
 // normal velocity is itself O(h) (u.n = 0 on the wall), so the flux error there is O(h^2).
 template <class At>
-inline double face_value(PetscInt f, PetscInt n, double vel, double eps, const At& at) {
+inline double face_value(PetscInt f, const detail::Line& L, double vel, double eps, const At& at) {
   if (vel > 0) {  // upwind cell c = f - 1, flow towards +
     const PetscInt c = f - 1;
-    if (c - 2 >= 0 && c + 2 <= n - 1) return weno5(at(c - 2), at(c - 1), at(c), at(c + 1), at(c + 2), eps);
-    if (c - 1 >= 0) return weno3(at(c - 1), at(c), at(c + 1), eps);
+    if (L.has(c - 2) && L.has(c + 2)) return weno5(at(c - 2), at(c - 1), at(c), at(c + 1), at(c + 2), eps);
+    if (L.has(c - 1)) return weno3(at(c - 1), at(c), at(c + 1), eps);
     return at(c);
   }
   const PetscInt c = f;  // upwind cell c = f, flow towards -: the mirror image
-  if (c + 2 <= n - 1 && c - 2 >= 0) return weno5(at(c + 2), at(c + 1), at(c), at(c - 1), at(c - 2), eps);
-  if (c + 1 <= n - 1) return weno3(at(c + 1), at(c), at(c - 1), eps);
+  if (L.has(c + 2) && L.has(c - 2)) return weno5(at(c + 2), at(c + 1), at(c), at(c - 1), at(c - 2), eps);
+  if (L.has(c + 1)) return weno3(at(c + 1), at(c), at(c - 1), eps);
   return at(c);
 }
 
@@ -81,14 +82,18 @@ void weno5_rhs(const Box& b, const PetscScalar* const* phi, const Vel* const* ve
 
   // x-faces: face f is the left face of cell f. Each face flux F is computed once and given to
   // both neighbours, -(F_{i+1} - F_i)/hx, in the same order (left face first) on every rank so
-  // that results do not depend on the parallel layout. Faces f = 0 and f = nx are walls.
+  // that results do not depend on the parallel layout. Faces f = 0 and f = nx are walls, or,
+  // with periodic x, the same interior face (computed from the wrapped ghosts by both owners).
+  const detail::Line lx = detail::x_line(b), ly = detail::y_line(b);
+  const PetscInt f0 = b.periodic_x ? b.xs : std::max<PetscInt>(b.xs, 1);
+  const PetscInt f1 = b.periodic_x ? b.xe() : std::min(b.xe(), b.nx - 1);
   for (PetscInt j = b.ys; j < b.ye(); ++j) {
     const PetscScalar* row = phi[j];
     auto at = [row](PetscInt k) { return row[k]; };
-    for (PetscInt f = std::max<PetscInt>(b.xs, 1); f <= std::min(b.xe(), b.nx - 1); ++f) {
+    for (PetscInt f = f0; f <= f1; ++f) {
       const double u = vel[j][f].u;
       if (u == 0.0) continue;
-      const double F = u * face_value(f, b.nx, u, epsx, at) / b.hx;
+      const double F = u * face_value(f, lx, u, epsx, at) / b.hx;
       if (f < b.xe()) rhs[j][f] += F;       // inflow through the left face of cell f
       if (f - 1 >= b.xs) rhs[j][f - 1] -= F;  // outflow through the right face of cell f-1
     }
@@ -99,7 +104,7 @@ void weno5_rhs(const Box& b, const PetscScalar* const* phi, const Vel* const* ve
     for (PetscInt f = std::max<PetscInt>(b.ys, 1); f <= std::min(b.ye(), b.ny - 1); ++f) {
       const double v = vel[f][i].v;
       if (v == 0.0) continue;
-      const double G = v * face_value(f, b.ny, v, epsy, at) / b.hy;
+      const double G = v * face_value(f, ly, v, epsy, at) / b.hy;
       if (f < b.ye()) rhs[f][i] += G;
       if (f - 1 >= b.ys) rhs[f - 1][i] -= G;
     }

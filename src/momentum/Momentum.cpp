@@ -96,7 +96,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
       // ---- x-momentum, unknown u on the left face of cell (i, j) ----
       row.i = i; row.j = j; row.k = 0; row.c = 0;
       wr[j][i].u = 0.0;
-      if (i == 0) {  // wall face: u = 0 (eq. 20); a scaled identity row keeps A SPD
+      if (b.wall_u(i)) {  // wall face: u = 0 (eq. 20); a scaled identity row keeps A SPD
         col[0] = row;
         val[0] = a0dt * r[j][i];
         GF_PETSC(MatSetValuesStencil(A_, 1, &row, 1, col, val, INSERT_VALUES));
@@ -106,10 +106,11 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         auto add = [&](PetscInt ii, PetscInt jj, PetscInt cc, double v) {
           col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = cc; val[n] = v; ++n;
         };
-        // normal stress 2 eta du/dx at the centres of cells i-1 and i
+        // normal stress 2 eta du/dx at the centres of cells i-1 and i (periodic x: the
+        // columns -1 / nx wrap in MatSetValuesStencil, cell i-1 = -1 is a ghost)
         diag += 2 * (ec[j][i] + ec[j][i - 1]) / hx2;
-        if (i + 1 < b.nx) add(i + 1, j, 0, -2 * ec[j][i] / hx2);
-        if (i - 1 >= 1) add(i - 1, j, 0, -2 * ec[j][i - 1] / hx2);
+        if (!b.wall_u(i + 1)) add(i + 1, j, 0, -2 * ec[j][i] / hx2);
+        if (!b.wall_u(i - 1)) add(i - 1, j, 0, -2 * ec[j][i - 1] / hx2);
         // shear stress eta (du/dy + dv/dx) at the top node (i, j+1)
         if (j + 1 < b.ny) {
           const double e = en[j + 1][i];
@@ -155,8 +156,8 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         diag += 2 * (ec[j][i] + ec[j - 1][i]) / hy2;
         if (j + 1 < b.ny) add(i, j + 1, 1, -2 * ec[j][i] / hy2);
         if (j - 1 >= 1) add(i, j - 1, 1, -2 * ec[j - 1][i] / hy2);
-        // shear stress at the right node (i+1, j)
-        if (i + 1 < b.nx) {
+        // shear stress at the right node (i+1, j) (periodic x: node nx is node 0)
+        if (!b.wall_u(i + 1)) {
           const double e = en[j][i + 1];
           diag += e / hx2;
           add(i + 1, j, 1, -e / hx2);
@@ -169,7 +170,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
           wr[j][i].v += c * bc_.right.velocity / hx;
         }
         // ... and at the left node (i, j)
-        if (i >= 1) {
+        if (!b.wall_u(i)) {
           const double e = en[j][i];
           diag += e / hx2;
           add(i - 1, j, 1, -e / hx2);
@@ -219,7 +220,7 @@ void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoe
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), rhs, &out));
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      if (i == 0) {
+      if (b.wall_u(i)) {
         out[j][i].u = 0.0;
       } else {
         const double rf = ops::rho_xface(r, i, j);

@@ -37,7 +37,8 @@ class Predictor {
 
   // Assembles (a0/dt) rho_face - div(2 eta D(.)) + wall terms for the current properties.
   // rho, eta: cell-centred global Vecs; eta_node: global dm_cell Vec holding eta at the
-  // interior nodes (i hx, j hy), 1 <= i < nx, 1 <= j < ny, stored at (i, j).
+  // interior nodes (i hx, j hy), 1 <= i < nx (0 <= i < nx with periodic x), 1 <= j < ny,
+  // stored at (i, j).
   void assemble(Vec rho, Vec eta, Vec eta_node, double a0_over_dt);
 
   // The explicit part of the right-hand side: history, convection, -grad p^n, gravity and the
@@ -65,8 +66,8 @@ class Predictor {
   void strain_rate(Vec vel, Vec eta, Vec D);
   // Wall storage in a dm_vel Vec: the bottom / top wall value of the u-face (i, 0) / (i, ny-1)
   // in component u at (i, 0) / (i, ny-1); the left / right wall value of the v-face (0, j) /
-  // (nx-1, j) in component v at (0, j) / (nx-1, j). Faces without Coulomb friction or not
-  // granular hold 0.
+  // (nx-1, j) in component v at (0, j) / (nx-1, j) (none with periodic x). Faces without
+  // Coulomb friction or not granular hold 0.
   // kappa_b = tan(alpha_b) (-T_n)^+ (eq. 22), -T_n = p^n - 2 eta D_nn - kappa S_nn at the cells
   // next to the wall (the normal stress on the wall, with the current D(u~) and S: it is
   // updated in every iteration of the fixed point, as kappa_b^{n+1} in eq. 31).

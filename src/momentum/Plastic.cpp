@@ -42,11 +42,14 @@ void Predictor::set_phase(Vec phi) {
 bool Predictor::coulomb_face(const PetscScalar* const* ph, int side, PetscInt i, PetscInt j) const {
   if (!ph || tan_b_[side] <= 0) return false;
   const Box& b = g_.box();
+  // With periodic x there are no left/right walls, and the bottom/top u-face i = 0 is an
+  // ordinary face (its left cell -1 is the wrapped ghost).
   switch (side) {
-    case 0: return j >= 1 && i == 0 && 0.5 * (ph[j - 1][0] + ph[j][0]) < 0;
-    case 1: return j >= 1 && i == b.nx - 1 && 0.5 * (ph[j - 1][i] + ph[j][i]) < 0;
-    case 2: return i >= 1 && j == 0 && 0.5 * (ph[0][i - 1] + ph[0][i]) < 0;
-    case 3: return i >= 1 && j == b.ny - 1 && 0.5 * (ph[j][i - 1] + ph[j][i]) < 0;
+    case 0: return !b.periodic_x && j >= 1 && i == 0 && 0.5 * (ph[j - 1][0] + ph[j][0]) < 0;
+    case 1:
+      return !b.periodic_x && j >= 1 && i == b.nx - 1 && 0.5 * (ph[j - 1][i] + ph[j][i]) < 0;
+    case 2: return !b.wall_u(i) && j == 0 && 0.5 * (ph[0][i - 1] + ph[0][i]) < 0;
+    case 3: return !b.wall_u(i) && j == b.ny - 1 && 0.5 * (ph[j][i - 1] + ph[j][i]) < 0;
   }
   return false;
 }
@@ -65,7 +68,7 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) 
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), kappa_b, &kb));
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), s_wall, &sw));
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), rhs, &out));
-  const PetscInt nx = b.nx, ny = b.ny;
+  const PetscInt ny = b.ny;
   auto kS = [&](PetscInt i, PetscInt j, int c) { return k[j][i] * s[j][i][c]; };
   // kappa Sxy at the node (i, j) = (i hx, j hy): mean of the four cells around an interior node.
   auto node = [&](PetscInt i, PetscInt j) {
@@ -73,7 +76,7 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) 
   };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      if (i >= 1) {  // x-momentum on the face (i, j)
+      if (!b.wall_u(i)) {  // x-momentum on the face (i, j)
         double f = (kS(i, j, 0) - kS(i - 1, j, 0)) / b.hx;
         // top node (i, j+1)
         double tt;
@@ -90,11 +93,11 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) 
       if (j >= 1) {  // y-momentum on the face (i, j)
         double f = (kS(i, j, 2) - kS(i, j - 1, 2)) / b.hy;
         double tr;
-        if (i + 1 < nx) tr = node(i + 1, j);
+        if (!b.wall_u(i + 1)) tr = node(i + 1, j);  // periodic x: node nx is node 0
         else if (coulomb_face(ph, 1, i, j)) tr = -kb[j][i].v * sw[j][i].v;
         else tr = bc_.right.type == WallType::NoSlip ? 0.5 * (kS(i, j - 1, 1) + kS(i, j, 1)) : 0.0;
         double tl;
-        if (i >= 1) tl = node(i, j);
+        if (!b.wall_u(i)) tl = node(i, j);
         else if (coulomb_face(ph, 0, i, j)) tl = kb[j][i].v * sw[j][i].v;
         else tl = bc_.left.type == WallType::NoSlip ? 0.5 * (kS(i, j - 1, 1) + kS(i, j, 1)) : 0.0;
         out[j][i].v += f + (tr - tl) / b.hx;
@@ -130,7 +133,7 @@ void Predictor::strain_rate(Vec vel, Vec eta, Vec D) {
   };
   // Engineering shear rate du/dy + dv/dx at the node (i, j).
   auto gamma = [&](PetscInt i, PetscInt j) -> double {
-    const bool wx = (i == 0 || i == nx), wy = (j == 0 || j == ny);
+    const bool wx = b.wall_u(i), wy = (j == 0 || j == ny);  // nodes on the walls
     if (wx && wy) return 0.0;  // corner
     if (!wx && !wy)
       return (v[j][i].u - v[j - 1][i].u) / b.hy + (v[j][i].v - v[j][i - 1].v) / b.hx;
@@ -233,9 +236,9 @@ double Predictor::update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n
   };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      if ((j == 0 || j == b.ny - 1) && i >= 1)
+      if ((j == 0 || j == b.ny - 1) && !b.wall_u(i))
         upd(sw[j][i].u, sn[j][i].u, kb[j][i].u, u[j][i].u, r[j][i], e[j][i], b.hy);
-      if ((i == 0 || i == b.nx - 1) && j >= 1)
+      if (!b.periodic_x && (i == 0 || i == b.nx - 1) && j >= 1)
         upd(sw[j][i].v, sn[j][i].v, kb[j][i].v, u[j][i].v, r[j][i], e[j][i], b.hx);
     }
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), eta, &e));

@@ -21,14 +21,15 @@ inline double muscl(double qm1, double q0, double q1, double q2, bool have_m1, b
 
 void convection(const Box& b, const Vel* const* vel, Vel** out) {
   const double hx = b.hx, hy = b.hy;
-  const PetscInt nx = b.nx, ny = b.ny;
+  const PetscInt ny = b.ny;
   // x-momentum: the flux of u through the cell centre c (between u-faces c and c+1) and through
   // the node (i, jn) (between u(i, jn-1) and u(i, jn)). u-face indices 0..nx exist (0 and nx are
-  // walls, u = 0); rows 0..ny-1.
+  // walls, u = 0; with periodic x every face exists, read from the wrapped ghosts); rows 0..ny-1.
   auto fx_u = [&](PetscInt c, PetscInt j) {
     const double a = 0.5 * (vel[j][c].u + vel[j][c + 1].u);
-    const double q = muscl(c >= 1 ? vel[j][c - 1].u : 0.0, vel[j][c].u, vel[j][c + 1].u,
-                           c + 2 <= nx ? vel[j][c + 2].u : 0.0, c >= 1, c + 2 <= nx, a);
+    const bool m1 = b.has_uface(c - 1), p2 = b.has_uface(c + 2);
+    const double q = muscl(m1 ? vel[j][c - 1].u : 0.0, vel[j][c].u, vel[j][c + 1].u,
+                           p2 ? vel[j][c + 2].u : 0.0, m1, p2, a);
     return a * q;
   };
   auto fy_u = [&](PetscInt i, PetscInt jn) {
@@ -41,10 +42,11 @@ void convection(const Box& b, const Vel* const* vel, Vel** out) {
   // y-momentum: the flux of v through the node (in, j) (between v(in-1, j) and v(in, j)) and
   // through the cell centre c (between v-faces c and c+1).
   auto fx_v = [&](PetscInt in, PetscInt j) {
-    if (in == 0 || in == nx) return 0.0;  // wall: u = 0
+    if (b.wall_u(in)) return 0.0;  // wall: u = 0
     const double a = 0.5 * (vel[j - 1][in].u + vel[j][in].u);
-    const double q = muscl(in >= 2 ? vel[j][in - 2].v : 0.0, vel[j][in - 1].v, vel[j][in].v,
-                           in + 1 <= nx - 1 ? vel[j][in + 1].v : 0.0, in >= 2, in + 1 <= nx - 1, a);
+    const bool m2 = b.has_cell_x(in - 2), p1 = b.has_cell_x(in + 1);
+    const double q = muscl(m2 ? vel[j][in - 2].v : 0.0, vel[j][in - 1].v, vel[j][in].v,
+                           p1 ? vel[j][in + 1].v : 0.0, m2, p1, a);
     return a * q;
   };
   auto fy_v = [&](PetscInt i, PetscInt c) {
@@ -55,7 +57,7 @@ void convection(const Box& b, const Vel* const* vel, Vel** out) {
   };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      out[j][i].u = (i == 0) ? 0.0
+      out[j][i].u = b.wall_u(i) ? 0.0
                              : (fx_u(i, j) - fx_u(i - 1, j)) / hx + (fy_u(i, j + 1) - fy_u(i, j)) / hy;
       out[j][i].v = (j == 0) ? 0.0
                              : (fx_v(i + 1, j) - fx_v(i, j)) / hx + (fy_v(i, j) - fy_v(i, j - 1)) / hy;

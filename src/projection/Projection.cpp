@@ -54,9 +54,10 @@ void Projector::assemble(Vec rho) {
         col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = 0; val[n] = -beta; ++n;
         diag += beta;
       };
-      // Wall faces carry no flux (u.n = 0, eq. 20 and (u^{n+1} - u~).n = 0 in eq. 32).
-      if (i > 0) add(i - 1, j, ihx2 / ops::rho_xface(r, i, j));
-      if (i + 1 < b.nx) add(i + 1, j, ihx2 / ops::rho_xface(r, i + 1, j));
+      // Wall faces carry no flux (u.n = 0, eq. 20 and (u^{n+1} - u~).n = 0 in eq. 32). With
+      // periodic x, cell 0 couples to cell nx-1 (the column -1 / nx wraps; rho from the ghosts).
+      if (!b.wall_u(i)) add(i - 1, j, ihx2 / ops::rho_xface(r, i, j));
+      if (!b.wall_u(i + 1)) add(i + 1, j, ihx2 / ops::rho_xface(r, i + 1, j));
       if (j > 0) add(i, j - 1, ihy2 / ops::rho_yface(r, i, j));
       if (j + 1 < b.ny) add(i, j + 1, ihy2 / ops::rho_yface(r, i, j + 1));
       col[n] = row;
@@ -112,7 +113,7 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
   const double k = dt / a0;
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      if (i > 0) u[j][i].u -= k * (ps[j][i] - ps[j][i - 1]) / (b.hx * ops::rho_xface(r, i, j));
+      if (!b.wall_u(i)) u[j][i].u -= k * (ps[j][i] - ps[j][i - 1]) / (b.hx * ops::rho_xface(r, i, j));
       else u[j][i].u = 0.0;
       if (j > 0) u[j][i].v -= k * (ps[j][i] - ps[j - 1][i]) / (b.hy * ops::rho_yface(r, i, j));
       else u[j][i].v = 0.0;

@@ -2,7 +2,8 @@
 // The incremental projection of eq. 32:
 //   rho^{n+1} a0 (u^{n+1} - u~) / dt + grad(p^{n+1} - p^n) = 0,   div u^{n+1} = 0,
 // i.e. with psi = p^{n+1} - p^n the variable-density Poisson problem
-//   -div( (1/rho) grad psi ) = -(a0/dt) div u~    (homogeneous Neumann on every wall)
+//   -div( (1/rho) grad psi ) = -(a0/dt) div u~    (homogeneous Neumann on every wall;
+//   periodic in x with boundary.periodic_x, the null space is still the constants)
 // followed by u^{n+1} = u~ - (dt/a0) (1/rho_face) grad psi and p^{n+1} = p^n + psi.
 // a0 = 3/2 for the constant-step BDF2 of the paper (momentum/Momentum.hpp).
 //

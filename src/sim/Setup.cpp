@@ -1,6 +1,8 @@
 #include "sim/Setup.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "core/Error.hpp"
 #include "levelset/PrescribedFlow.hpp"
@@ -96,9 +98,14 @@ void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi) {
     case CaseConfig::Shape::Rectangle: {
       // A side of the column lying on a wall is not an interface: extend the rectangle beyond
       // that wall so that phi is the distance to the free sides only (otherwise H_eps smears
-      // granular volume away along the walls: 2 % of the column at n = 32).
+      // granular volume away along the walls: 2 % of the column at n = 32). With periodic x
+      // the sides x = 0 and x = Lx are interfaces with the periodic image (unless the
+      // rectangle spans the whole period, then it is a layer: extend it as well).
       const double Lx = c.domain.Lx, Ly = c.domain.Ly;
-      levelset::init_rectangle(g, phi, in.x0 <= 0 ? -Lx : in.x0, in.x1 >= Lx ? 2 * Lx : in.x1,
+      const bool span = in.x0 <= 0 && in.x1 >= Lx;
+      const bool ext_x0 = in.x0 <= 0 && (!c.periodic_x || span);
+      const bool ext_x1 = in.x1 >= Lx && (!c.periodic_x || span);
+      levelset::init_rectangle(g, phi, ext_x0 ? -Lx : in.x0, ext_x1 ? 2 * Lx : in.x1,
                                in.y0 <= 0 ? -Ly : in.y0, in.y1 >= Ly ? 2 * Ly : in.y1);
       break;
     }
@@ -108,6 +115,25 @@ void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi) {
       levelset::init_zalesak(g, phi, in.cx, in.cy, in.radius, in.slot_width, in.slot_depth);
       break;
   }
+}
+
+void initial_velocity(const Grid& g, const CaseConfig& c, Vec vel, Vec vel_old) {
+  GF_PETSC(VecSet(vel, 0.0));
+  if (c.initial.velocity == CaseConfig::InitialVelocity::Vortex) {
+    const Box& b = g.box();
+    const double A = c.initial.velocity_amplitude, pi = std::numbers::pi;
+    const double Lx = b.Lx, Ly = b.Ly;
+    auto sq = [](double x) { return x * x; };
+    if (b.periodic_x)
+      levelset::velocity_from_stream_function(g, vel, [=](double x, double y) {
+        return A * (Ly / pi) * std::sin(2 * pi * x / Lx) * sq(std::sin(pi * y / Ly));
+      });
+    else
+      levelset::velocity_from_stream_function(g, vel, [=](double x, double y) {
+        return A * (Lx / pi) * sq(std::sin(pi * x / Lx)) * sq(std::sin(pi * y / Ly));
+      });
+  }
+  GF_PETSC(VecCopy(vel, vel_old));
 }
 
 }  // namespace gf

@@ -14,5 +14,17 @@ PhysicsConfig physics_from_case(const CaseConfig& c);
 RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir);
 // phi at t = 0 from initial.shape (a signed distance; phi = -1 m everywhere for a one-phase run).
 void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi);
+// The velocity at t = 0 from initial.velocity into vel (and vel_old, the same field, so that a
+// BDF2 history read before the first step sees a fluid already in motion rather than at rest).
+// none: zero. vortex: the stream function, sampled at the nodes (i hx, j hy),
+//   walls:      psi = A (Lx/pi) sin^2(pi x/Lx) sin^2(pi y/Ly),
+//   periodic x: psi = A (Ly/pi) sin(2 pi x/Lx) sin^2(pi y/Ly)   (two counter-rotating cells
+//               per period, u = A sin(2 pi x/Lx) sin(2 pi y/Ly); the shear across the seam
+//               x = 0 = Lx is largest, v = -2 A (Ly/Lx) sin^2(pi y/Ly) there, where the wall
+//               form, periodic as well, would leave the fluid at rest),
+// and u = (psi(i, j+1) - psi(i, j))/hy, v = -(psi(i+1, j) - psi(i, j))/hx: the discrete
+// divergence of every cell is zero to round-off, the normal velocity on every wall is zero, and
+// psi has a double zero on the walls, so the tangential velocity vanishes there too (no slip).
+void initial_velocity(const Grid& g, const CaseConfig& c, Vec vel, Vec vel_old);
 
 }  // namespace gf

@@ -122,7 +122,7 @@ void Stepper::mu_i_viscosity(State& s) {
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       const double thc = cfg_.levelset ? levelset::height_fraction_cell(b, phi, i, j) : 0.0;
       ec[j][i] = levelset::harmonic_viscosity(thc, cfg_.eta_air, es[j][i]);
-      if (i >= 1 && j >= 1) {  // interior node: mean of the four surrounding cells
+      if (!b.wall_u(i) && j >= 1) {  // interior node: mean of the four surrounding cells
         const double esn = 0.25 * (es[j][i] + es[j][i - 1] + es[j - 1][i] + es[j - 1][i - 1]);
         const double thn = cfg_.levelset ? levelset::height_fraction_node(b, phi, i, j) : 0.0;
         en[j][i] = levelset::harmonic_viscosity(thn, cfg_.eta_air, esn);
@@ -204,7 +204,7 @@ void Stepper::initialize(State& s) {
     GF_PETSC(DMDAVecGetArray(g_.dm_vel(), u_tilde_, &u));
     for (PetscInt j = b.ys; j < b.ye(); ++j)
       for (PetscInt i = b.xs; i < b.xe(); ++i) {
-        u[j][i].u = i > 0 ? cfg_.gravity[0] : 0.0;
+        u[j][i].u = !b.wall_u(i) ? cfg_.gravity[0] : 0.0;
         u[j][i].v = j > 0 ? cfg_.gravity[1] : 0.0;
       }
     GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), u_tilde_, &u));

@@ -743,3 +743,63 @@ TEST(Params, DeclaringAKeyTwiceOrABadDefaultIsABug) {
   EXPECT_THROW(p.get_int("a.b"), std::logic_error);
   EXPECT_THROW(p.get_real("nope"), std::logic_error);
 }
+
+TEST(CaseFile, PeriodicXHasNoSideWalls) {
+  // A speed or a friction on a wall that does not exist is an error; its type only a warning.
+  const std::string e = load_error(write_file("periodic_bad.toml", R"(
+[boundary]
+periodic_x = true
+[boundary.left]
+type = "no_slip"
+velocity = 0.5
+[boundary.right]
+friction_angle = 20
+)"));
+  EXPECT_NE(e.find("boundary.left.velocity = 0.5: boundary.periodic_x = true: there is no left "
+                   "wall to move: must be 0"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("boundary.right.friction_angle = 20: boundary.periodic_x = true: there is no "
+                   "right wall to rub on: must be 0"),
+            std::string::npos)
+      << e;
+  const auto c = load_case(write_file("periodic.toml", R"(
+[boundary]
+periodic_x = true
+[boundary.left]
+type = "no_slip"
+[initial]
+shape = "layer"
+height = 0.05
+)"),
+                           {});
+  EXPECT_TRUE(c.periodic_x);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0],
+            "boundary.left.type is set but boundary.periodic_x = true: there is no left wall, "
+            "ignored");
+  const std::string d = gf::describe_case(c, 1);
+  EXPECT_NE(d.find("walls      bottom navier, top free_slip; periodic in x"), std::string::npos)
+      << d;
+  const std::string resolved = (scratch() / "periodic_resolved.toml").string();
+  ASSERT_EQ(gf::write_resolved_case(c, resolved), "");
+  EXPECT_TRUE(load_case(resolved, {}) == c);
+  EXPECT_FALSE(load_case(write_file("walls.toml", "[initial]\nshape = \"layer\"\n"), {}).periodic_x);
+}
+
+TEST(CaseFile, InitialVortexVelocity) {
+  EXPECT_NE(load_error(write_file("vortex0.toml", "[initial]\nvelocity = \"vortex\"\n"))
+                .find("initial.velocity_amplitude = 0 (default): initial.velocity = \"vortex\" "
+                      "needs an amplitude: must be non-zero (m/s)"),
+            std::string::npos);
+  const auto w = load_case(write_file("amp.toml", "[initial]\nvelocity_amplitude = 2\n"), {});
+  ASSERT_EQ(w.warnings.size(), 1u);
+  EXPECT_EQ(w.warnings[0],
+            "initial.velocity_amplitude is set but initial.velocity = none does not use it");
+  // The bundled cessation case: valid, silent, and its velocity scale is the vortex's.
+  const auto c = load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/verify/bingham_cessation.toml", {});
+  EXPECT_TRUE(c.warnings.empty());
+  EXPECT_EQ(c.initial.velocity, gf::CaseConfig::InitialVelocity::Vortex);
+  EXPECT_STREQ(gf::to_string(c.initial.velocity), "vortex");
+  EXPECT_DOUBLE_EQ(gf::velocity_scale(c), c.initial.velocity_amplitude);
+}

@@ -22,7 +22,7 @@ struct TaylorGreen {
   double u(double x, double y, double t) const { return std::sin(pi * x) * std::cos(pi * y) * F(t); }
   double v(double x, double y, double t) const { return -std::cos(pi * x) * std::sin(pi * y) * F(t); }
   double p(double x, double y, double t) const {
-    return -0.25 * (std::cos(2 * pi * x) + std::cos(2 * pi * y)) * F(t) * F(t);
+    return 0.25 * (std::cos(2 * pi * x) + std::cos(2 * pi * y)) * F(t) * F(t);
   }
 };
 
