@@ -24,7 +24,8 @@ const std::vector<std::string> kShapes{"none", "rectangle", "layer", "circle", "
 const std::vector<std::string> kPrescribed{"none", "rotation", "single_vortex"};
 const std::vector<std::string> kInitialVelocities{"none", "vortex"};
 const std::vector<std::string> kWalls{"free_slip", "no_slip", "navier"};
-const std::vector<std::string> kProbeFields{"phi", "rho", "u", "v", "speed", "p", "eta"};
+const std::vector<std::string> kProbeFields{"phi", "rho",    "u",      "v",     "speed",
+                                            "p",   "eta",    "D_norm", "S_norm", "kappa"};
 const std::vector<std::string> kSides{"left", "right", "bottom", "top"};
 const std::vector<std::string> kYields{"none", "bingham", "dp", "hp"};
 const std::vector<std::string> kViscosities{"constant", "mu_i"};
@@ -273,7 +274,10 @@ Params case_params() {
   probe.add_real("y1", "m", std::nullopt, Range::any(), "Segment end, y.");
   probe.add_int("points", "", 101, closed(2, 1e6),
                 "Samples along the segment, both ends included.");
-  probe.add_string_list("fields", {"phi", "u", "v", "p"}, kProbeFields, "Fields sampled.");
+  probe.add_string_list("fields", {"phi", "u", "v", "p"}, kProbeFields,
+                        "Fields sampled: phi, rho (kg/m^3), u, v, speed (m/s), p (Pa), eta "
+                        "(Pa s) and the plastic fields D_norm (|D(u)|, 1/s), S_norm (|S|, "
+                        "< 1 where rigid) and kappa (yield stress, Pa), all cell centred.");
   p.add_table_array("probe", std::move(probe),
                     "A line probe: samples fields along a segment every output.interval.");
   return p;

@@ -26,7 +26,9 @@ struct CaseConfig {
   // Same enumerators, same order as gf::WallType in boundary/Boundary.hpp (core/ may not
   // include a lower layer), so static_cast<WallType>(wall.type) is the conversion.
   enum class Wall { FreeSlip, NoSlip, Navier };
-  enum class ProbeField { Phi, Rho, U, V, Speed, P, Eta };
+  // Probe fields; DNorm, SNorm, Kappa are the cell-centred plastic fields |D(u)| (1/s), |S|
+  // and the yield stress kappa (Pa), the same as the VTK output (appended: order kept).
+  enum class ProbeField { Phi, Rho, U, V, Speed, P, Eta, DNorm, SNorm, Kappa };
   // Same enumerators, same order as gf::rheology::Yield / Viscosity in rheology/Rheology.hpp.
   // None: Newtonian granular phase; Bingham: kappa = tau_y; DruckerPrager ("dp"): kappa =
   // tan(alpha) p^+ (eq. 19); Hydrostatic ("hp"): kappa = tan(alpha) p_hyd (eq. 15).

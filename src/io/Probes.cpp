@@ -65,8 +65,23 @@ double inside(double x, double L, const std::string& what) {
 
 }  // namespace
 
-ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> specs) : g_(g) {
+std::vector<std::string> default_extra_cell_fields() { return {"D_norm", "S_norm", "kappa"}; }
+
+ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> specs,
+                         std::vector<std::string> extra_cell_fields)
+    : g_(g), extra_(std::move(extra_cell_fields)) {
   const Box& b = g.box();
+  {
+    std::set<std::string> ex;
+    for (const std::string& e : extra_)
+      if (e.empty() || !ex.insert(e).second ||
+          std::find(std::begin(kNames), std::end(kNames), e) != std::end(kNames))
+        throw std::invalid_argument("ProbeWriter: extra cell field '" + e +
+                                    "' is empty, repeated or a built-in name");
+  }
+  needs_.assign(kCount + extra_.size(), 0);
+  std::string known = "phi, rho, u, v, speed, p, eta";
+  for (const std::string& e : extra_) known += ", " + e;
   std::set<std::string> names;
   for (ProbeSpec& s : specs) {
     const std::string where = "probe '" + s.name + "'";
@@ -81,11 +96,12 @@ ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> 
     for (const std::string& f : s.fields) {
       const auto* it = std::find_if(std::begin(kNames), std::end(kNames),
                                     [&](const char* n) { return f == n; });
-      if (it == std::end(kNames))
-        throw InputError(where + ": unknown field '" + f +
-                         "' (known: phi, rho, u, v, speed, p, eta)");
+      const auto ex = std::find(extra_.begin(), extra_.end(), f);
+      if (it == std::end(kNames) && ex == extra_.end())
+        throw InputError(where + ": unknown field '" + f + "' (known: " + known + ")");
       if (!seen.insert(f).second) throw InputError(where + ": field '" + f + "' listed twice");
-      p.q.push_back(static_cast<Quantity>(it - std::begin(kNames)));
+      p.q.push_back(it != std::end(kNames) ? static_cast<int>(it - std::begin(kNames))
+                                           : kCount + static_cast<int>(ex - extra_.begin()));
     }
     const double x0 = inside(s.x0, b.Lx, where + " x0"), x1 = inside(s.x1, b.Lx, where + " x1");
     const double y0 = inside(s.y0, b.Ly, where + " y0"), y1 = inside(s.y1, b.Ly, where + " y1");
@@ -102,12 +118,12 @@ ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> 
                                      PetscInt(0), b.ny - 1);
       p.mine.push_back(ic >= b.xs && ic < b.xe() && jc >= b.ys && jc < b.ye());
     }
-    for (const Quantity q : p.q) needs_[q] = true;
+    for (const int q : p.q) needs_[q] = 1;
     p.spec = std::move(s);
     probes_.push_back(std::move(p));
   }
   // u and v are needed for speed; rho/phi/p/eta only if asked for.
-  if (needs_[kSpeed]) needs_[kU] = needs_[kV] = true;
+  if (needs_[kSpeed]) needs_[kU] = needs_[kV] = 1;
 
   for (const Probe& p : probes_) {
     std::vector<std::string> cols = {"t", "x", "y"};
@@ -116,21 +132,50 @@ ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> 
   }
 }
 
-void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta) {
+bool ProbeWriter::samples(const std::string& field) const {
+  for (const Probe& pr : probes_)
+    if (std::find(pr.spec.fields.begin(), pr.spec.fields.end(), field) != pr.spec.fields.end())
+      return true;
+  return false;
+}
+
+void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta,
+                        const NamedCellFields& extra) {
   const Box& b = g_.box();
-  const Vec cellvec[kCount] = {phi, rho, nullptr, nullptr, nullptr, p, eta};
-  for (int q : {kPhi, kRho, kP, kEta})
-    if (needs_[q] && !cellvec[q])
-      throw std::invalid_argument(std::string("ProbeWriter::write: a probe samples '") +
-                                  kNames[q] + "' but its Vec is null");
+  const std::size_t nq = needs_.size();
+  // The cell-centred Vec of every quantity (null for u, v, speed).
+  std::vector<Vec> cellvec(nq, nullptr);
+  cellvec[kPhi] = phi;
+  cellvec[kRho] = rho;
+  cellvec[kP] = p;
+  cellvec[kEta] = eta;
+  std::vector<char> given(extra_.size(), 0);
+  for (const auto& [name, vec] : extra) {
+    const auto it = std::find(extra_.begin(), extra_.end(), name);
+    if (it == extra_.end())
+      throw std::invalid_argument("ProbeWriter::write: unknown extra cell field '" + name + "'");
+    const std::size_t e = static_cast<std::size_t>(it - extra_.begin());
+    if (given[e]) throw std::invalid_argument("ProbeWriter::write: extra cell field '" + name +
+                                              "' given twice");
+    given[e] = 1;
+    cellvec[kCount + e] = vec;
+  }
+  auto name_of = [&](std::size_t q) {
+    return q < kCount ? std::string(kNames[q]) : extra_[q - kCount];
+  };
+  for (std::size_t q = 0; q < nq; ++q)
+    if (q != kU && q != kV && q != kSpeed && needs_[q] && !cellvec[q])
+      throw std::invalid_argument("ProbeWriter::write: a probe samples '" + name_of(q) +
+                                  "' but its Vec is " + (q < kCount ? "null" : "null or missing"));
   if ((needs_[kU] || needs_[kV]) && !vel)
     throw std::invalid_argument("ProbeWriter::write: a probe samples the velocity but vel is null");
 
   // Ghosted local copies, only of what some probe samples (the exchange is collective, so
   // this choice is the same on all ranks).
-  std::unique_ptr<diag::LocalCells> cells[kCount];
-  for (int q : {kPhi, kRho, kP, kEta})
-    if (needs_[q]) cells[q] = std::make_unique<diag::LocalCells>(g_.dm_cell(), cellvec[q]);
+  std::vector<std::unique_ptr<diag::LocalCells>> cells(nq);
+  for (std::size_t q = 0; q < nq; ++q)
+    if (cellvec[q] && needs_[q])
+      cells[q] = std::make_unique<diag::LocalCells>(g_.dm_cell(), cellvec[q]);
   std::unique_ptr<diag::LocalVelocity> v;
   if (needs_[kU] || needs_[kV]) v = std::make_unique<diag::LocalVelocity>(g_, vel);
 
@@ -154,7 +199,7 @@ void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta) {
                      [&](PetscInt j, PetscInt i) { return vv[j][i].v; });
       }
       for (std::size_t m = 0; m < pr.q.size(); ++m) {
-        const Quantity q = pr.q[m];
+        const int q = pr.q[m];
         double val;
         if (q == kU) val = u;
         else if (q == kV) val = w;

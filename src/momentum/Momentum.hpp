@@ -74,6 +74,13 @@ class Predictor {
   void wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b);
   // s_t <- P_b(s_t + r_b kappa_b u_t + theta (s_t^n - s_t)) on the granular Coulomb faces (eq. 31),
   // r_b = r_factor (rho a0 h / dt + 2 eta / h) / kappa_b^2. Returns max |change| (collective).
+  // Where the granular phase touches each frictional wall: the length (m) where it sticks
+  // (|s_t| < 1: the wall stress is below the Coulomb threshold, eq. 23) and where it slides
+  // (|s_t| = 1, eq. 22). Index: side (left, right, bottom, top); collective.
+  struct WallContact {
+    std::array<double, 4> stick_m{0, 0, 0, 0}, slide_m{0, 0, 0, 0};
+  };
+  WallContact wall_contact(Vec s_wall, Vec kappa_b) const;
   double update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,
                      double a0_over_dt, double theta, double r_factor);
 

@@ -250,4 +250,34 @@ double Predictor::update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n
   return g_.max(change);
 }
 
+Predictor::WallContact Predictor::wall_contact(Vec s_wall, Vec kappa_b) const {
+  const Box& b = g_.box();
+  const Vel **sw, **kb;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), s_wall, &sw));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), kappa_b, &kb));
+  double loc[8] = {0, 0, 0, 0, 0, 0, 0, 0}, glob[8];
+  // A face counts when it carries a Coulomb stress (kappa_b > 0: granular and frictional).
+  auto add = [&](int side, double s, double k, double len) {
+    if (k <= 0) return;
+    const bool slide = std::abs(s) >= 1.0 - 1e-9;
+    loc[side + (slide ? 4 : 0)] += len;
+  };
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if (j == 0 && !b.wall_u(i) && tan_b_[2] > 0) add(2, sw[j][i].u, kb[j][i].u, b.hx);
+      if (j == b.ny - 1 && !b.wall_u(i) && tan_b_[3] > 0) add(3, sw[j][i].u, kb[j][i].u, b.hx);
+      if (!b.periodic_x && i == 0 && j >= 1 && tan_b_[0] > 0) add(0, sw[j][i].v, kb[j][i].v, b.hy);
+      if (!b.periodic_x && i == b.nx - 1 && j >= 1 && tan_b_[1] > 0) add(1, sw[j][i].v, kb[j][i].v, b.hy);
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), kappa_b, &kb));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), s_wall, &sw));
+  MPI_Allreduce(loc, glob, 8, MPI_DOUBLE, MPI_SUM, g_.comm());
+  WallContact wc;
+  for (int k = 0; k < 4; ++k) {
+    wc.stick_m[k] = glob[k];
+    wc.slide_m[k] = glob[k + 4];
+  }
+  return wc;
+}
+
 }  // namespace gf::momentum

@@ -57,7 +57,8 @@ RunSummary Simulation::run() {
   io::CsvWriter csv(rc_.out_dir + "/diagnostics.csv",
                     {"t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed",
                      "granular_u", "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
-                     "fp_change"},
+                     "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m",
+                     "bottom_slide_m"},
                     g_.comm());
   io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes);
   std::unique_ptr<io::VtkSeries> vtk;
@@ -84,10 +85,13 @@ RunSummary Simulation::run() {
     const double div = diag::max_divergence(g_, s_.vel);
     max_div_run = std::max(max_div_run, div);
     const auto gu = diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
+    // Where the granular material sticks to / slides on the back wall and the bottom (eqs. 22-23).
+    const auto stick = stepper_.wall_stick_m(s_), slide = stepper_.wall_slide_m(s_);
     csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
              diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
-             static_cast<double>(last.fp_iters), last.fp_change});
+             static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
+             slide[2]});
     probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta);
     sum.volume_change_pct = vchange;
   };

@@ -159,6 +159,15 @@ void Stepper::update_yield(State& s) {
   predictor_->wall_yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
 }
 
+std::array<double, 4> Stepper::wall_stick_m(const State& s) const {
+  if (!predictor_ || !predictor_->has_wall_friction()) return {0, 0, 0, 0};
+  return predictor_->wall_contact(s.s_wall, kappa_b_).stick_m;
+}
+std::array<double, 4> Stepper::wall_slide_m(const State& s) const {
+  if (!predictor_ || !predictor_->has_wall_friction()) return {0, 0, 0, 0};
+  return predictor_->wall_contact(s.s_wall, kappa_b_).slide_m;
+}
+
 void Stepper::derived_fields(State& s, Vec Dnorm, Vec Snorm, Vec yielded) {
   if (predictor_) {
     predictor_->strain_rate(s.vel, s.eta, D_);
