@@ -61,12 +61,12 @@ RunSummary Simulation::run() {
                      "bottom_slide_m"},
                     g_.comm());
   io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes);
+  Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
+      yielded(g_.dm_cell(), "yielded");
   std::unique_ptr<io::VtkSeries> vtk;
   if (rc_.vtk_interval > 0) vtk = std::make_unique<io::VtkSeries>(g_, rc_.out_dir, "fields");
   // Cell-centred velocity (2 interleaved components, reusing the dm_vel layout) and |u|.
   Field ucell(g_.dm_vel(), "u_cell"), speed(g_.dm_cell(), "speed");
-  Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
-      yielded(g_.dm_cell(), "yielded");
 
   const double eps = cfg.levelset ? cfg.eps : 0.0;
   auto volume = [&]() {
@@ -92,7 +92,14 @@ RunSummary Simulation::run() {
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
              static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
              slide[2]});
-    probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta);
+    // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
+    io::NamedCellFields extra;
+    if (probes.samples("D_norm") || probes.samples("S_norm")) {
+      stepper_.derived_fields(s_, dnorm, snorm, yielded);
+      extra = {{"D_norm", dnorm}, {"S_norm", snorm}};
+    }
+    if (probes.samples("kappa")) extra.emplace_back("kappa", stepper_.kappa());
+    probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta, extra);
     sum.volume_change_pct = vchange;
   };
   auto write_vtk = [&]() {
