@@ -122,14 +122,20 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lpsi_, &ps));
 
-  // p^{n+1} = p^n + psi, then the level: mean over the top row of cells is zero.
+  // p^{n+1} = p^n + psi, then the level: the mean pressure ON the top boundary y = Ly, linearly
+  // extrapolated from the last two rows of cells (p_wall = (3 p_{ny-1} - p_{ny-2}) / 2), is zero.
+  // At the wall, not at the first cell centre: where the top is the free surface of a layer
+  // (an incline with a free-slip lid), a half-cell offset would leave the top row of cells with
+  // no pressure and so no Drucker-Prager yield stress (eq. 19). Ranks own >= 3 rows each, so
+  // both rows are local to the top ranks.
   GF_PETSC(VecAXPY(p, 1.0, psi_));
   double top_sum = 0;
   {
     const PetscScalar** pa;
     GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), p, &pa));
     if (b.ye() == b.ny)
-      for (PetscInt i = b.xs; i < b.xe(); ++i) top_sum += pa[b.ny - 1][i];
+      for (PetscInt i = b.xs; i < b.xe(); ++i)
+        top_sum += 1.5 * pa[b.ny - 1][i] - 0.5 * pa[b.ny - 2][i];
     GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), p, &pa));
   }
   GF_PETSC(VecShift(p, -g_.sum(top_sum) / b.nx));

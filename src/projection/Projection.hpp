@@ -9,8 +9,8 @@
 //
 // The operator is symmetric positive semi-definite with the constants as null space; it is
 // solved with CG and BoomerAMG by default, options prefix -pres_ (any PETSc KSP/PC can be
-// chosen at run time). The pressure level is fixed by making the mean pressure on the top row
-// of cells zero: the yield stress of the Drucker-Prager model (eq. 19) needs the absolute
+// chosen at run time). The pressure level is fixed by making the mean pressure on the top
+// boundary (extrapolated from the last two rows of cells) zero: the yield stress of the Drucker-Prager model (eq. 19) needs the absolute
 // pressure, and the top of the domain is in the air at the reference (atmospheric) pressure.
 #include <petscksp.h>
 

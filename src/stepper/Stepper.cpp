@@ -61,6 +61,7 @@ void Stepper::update_properties(State& s) {
     GF_PETSC(VecSet(s.rho, cfg_.rho_gran));
     GF_PETSC(VecSet(s.eta, cfg_.eta_gran));
     GF_PETSC(VecSet(eta_node_, cfg_.eta_gran));
+    if (cfg_.rheo.viscosity == rheology::Viscosity::MuI && predictor_) mu_i_viscosity(s);
     return;
   }
   const levelset::Props pr{cfg_.rho_air, cfg_.rho_gran, cfg_.eta_air, cfg_.eta_gran, cfg_.eps};

@@ -184,7 +184,7 @@ std::vector<BadCase> bad_cases() {
        "fields = [\"phi\", \"vel\"]\n",
        {},
        {"probe[1].fields = [\"phi\", \"vel\"]: \"vel\" is not allowed: each must be one of phi, "
-        "rho, u, v, speed, p, eta; did you mean v?"}},
+        "rho, u, v, speed, p, eta, D_norm, S_norm, kappa; did you mean v?"}},
       {"probe_duplicate_name",
        "",
        {},  // filled below: two copies of kProbe
@@ -520,6 +520,21 @@ TEST(CaseFile, BinghamIsDescribedWithItsBinghamNumber) {
   EXPECT_EQ(d.find("pressure scale"), std::string::npos) << d;
 }
 
+TEST(CaseFile, ProbesMaySampleThePlasticFields) {
+  const auto c = load_case(write_file("probe_plastic.toml",
+                                      "[[probe]]\nname = \"z\"\nx0 = 0.1\ny0 = 0.0\n"
+                                      "x1 = 0.1\ny1 = 0.2\n"
+                                      "fields = [\"u\", \"D_norm\", \"S_norm\", \"kappa\"]\n"),
+                           {});
+  using F = gf::CaseConfig::ProbeField;
+  ASSERT_EQ(c.probes.size(), 1u);
+  EXPECT_EQ(c.probes[0].fields, (std::vector<F>{F::U, F::DNorm, F::SNorm, F::Kappa}));
+  EXPECT_STREQ(gf::to_string(F::DNorm), "D_norm");
+  EXPECT_STREQ(gf::to_string(F::SNorm), "S_norm");
+  EXPECT_STREQ(gf::to_string(F::Kappa), "kappa");
+  EXPECT_STREQ(gf::to_string(F::Eta), "eta");  // the existing names keep their enumerators
+}
+
 TEST(CaseFile, SetGridNChangesTheDerivedNx) {
   const std::string path = write_file("grid.toml", "[grid]\nn = 64\n");
   const auto c64 = load_case(path, {});
@@ -621,7 +636,7 @@ TEST(CaseFile, ResolvedCaseListsEveryDeclaredKey) {
     EXPECT_NE(c.resolved_toml.find("\n" + leaf + " = "), std::string::npos) << s.key;
   }
   // No probes: the item keys are still documented.
-  EXPECT_NE(c.resolved_toml.find("#   fields: Fields sampled."), std::string::npos);
+  EXPECT_NE(c.resolved_toml.find("#   fields: Fields sampled: phi,"), std::string::npos);
 }
 
 TEST(CaseFile, HelpListsEveryKeyWithUnitDefaultAndRange) {

@@ -359,6 +359,88 @@ TEST_F(IoTest, ProbesReproduceLinearFields) {
   EXPECT_NEAR(w.rows[1][5], phi(1.55, 0.575), 1e-13);
 }
 
+TEST_F(IoTest, ProbesSampleExtraCellFields) {
+  // The plastic fields D_norm, S_norm, kappa (the default extra cell fields) are passed by
+  // name and sampled like the other cell-centred fields: linear fields are reproduced.
+  Grid g(PETSC_COMM_WORLD, 16, 12, 1.6, 0.6);
+  gf::State s(g);
+  const gf::Box& b = g.box();
+  gf::Field dn(g.dm_cell(), "D_norm"), sn(g.dm_cell(), "S_norm"), kap(g.dm_cell(), "kappa");
+  auto D = [](double x, double y) { return 2 + 3 * x - y; };
+  auto S = [](double x, double y) { return 0.1 * x + 0.9 * y; };
+  auto K = [](double x, double y) { return 100 - 20 * y + x; };
+  set_cells(g, dn, [&](PetscInt i, PetscInt j) { return D(b.xc(i), b.yc(j)); });
+  set_cells(g, sn, [&](PetscInt i, PetscInt j) { return S(b.xc(i), b.yc(j)); });
+  set_cells(g, kap, [&](PetscInt i, PetscInt j) { return K(b.xc(i), b.yc(j)); });
+  set_vel(g, s.vel, [&](PetscInt, PetscInt j) { return 0.5 * b.yc(j); },
+          [&](PetscInt, PetscInt) { return 0.0; });
+
+  gf::io::ProbeWriter pw(g, dir.string(),
+                         {{"plastic", 0.15, 0.08, 1.45, 0.52, 5, {"kappa", "u", "D_norm", "S_norm"}},
+                          {"only_u", 0.8, 0.1, 0.8, 0.5, 3, {"u"}}});
+  EXPECT_EQ(gf::io::default_extra_cell_fields(),
+            (std::vector<std::string>{"D_norm", "S_norm", "kappa"}));
+  EXPECT_TRUE(pw.samples("D_norm"));
+  EXPECT_TRUE(pw.samples("u"));
+  EXPECT_FALSE(pw.samples("p"));
+  // Order of the extras does not matter; phi, rho, p, eta are not sampled: null is fine.
+  pw.write(0.25, nullptr, nullptr, s.vel, nullptr, nullptr,
+           {{"S_norm", sn}, {"kappa", kap}, {"D_norm", dn}});
+  // A sampled extra field missing or null, an unknown name, a name twice: refused, and
+  // nothing is written (checked before any collective work).
+  EXPECT_THROW(pw.write(1, nullptr, nullptr, s.vel, nullptr, nullptr, {{"S_norm", sn}, {"kappa", kap}}),
+               std::invalid_argument);
+  EXPECT_THROW(pw.write(1, nullptr, nullptr, s.vel, nullptr, nullptr,
+                        {{"S_norm", sn}, {"kappa", kap}, {"D_norm", nullptr}}),
+               std::invalid_argument);
+  EXPECT_THROW(pw.write(1, nullptr, nullptr, s.vel, nullptr, nullptr,
+                        {{"S_norm", sn}, {"kappa", kap}, {"D_norm", dn}, {"yielded", dn}}),
+               std::invalid_argument);
+  EXPECT_THROW(pw.write(1, nullptr, nullptr, s.vel, nullptr, nullptr,
+                        {{"S_norm", sn}, {"kappa", kap}, {"D_norm", dn}, {"kappa", kap}}),
+               std::invalid_argument);
+  // An unknown field in a spec is still an input error, and names the extras among the known.
+  try {
+    gf::io::ProbeWriter(g, dir.string(), {{"bad", 0, 0, 1, 0, 3, {"yielded"}}});
+    ADD_FAILURE() << "no exception";
+  } catch (const gf::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("known: phi, rho, u, v, speed, p, eta, D_norm, S_norm, "
+                                         "kappa"),
+              std::string::npos)
+        << e.what();
+  }
+  // A writer with its own list of extra cell fields; a bad list is a programming error.
+  {
+    gf::io::ProbeWriter own(g, (dir / "own").string(), {{"y", 0.8, 0.1, 0.8, 0.5, 2, {"yielded"}}},
+                            {"yielded"});
+    own.write(0.0, nullptr, nullptr, nullptr, nullptr, nullptr, {{"yielded", kap}});
+    EXPECT_THROW(gf::io::ProbeWriter(g, (dir / "own2").string(), {}, {"p"}), std::invalid_argument);
+    EXPECT_THROW(gf::io::ProbeWriter(g, (dir / "own2").string(), {}, {"a", "a"}),
+                 std::invalid_argument);
+  }
+  if (world_rank() != 0) return;
+
+  const Table d = read_csv(dir / "probes" / "plastic.csv");
+  EXPECT_EQ(d.header, "t,x,y,kappa,u,D_norm,S_norm");
+  ASSERT_EQ(d.rows.size(), 5u);
+  for (const auto& row : d.rows) {
+    ASSERT_EQ(row.size(), 7u);
+    EXPECT_EQ(row[0], 0.25);
+    const double x = row[1], y = row[2];
+    EXPECT_NEAR(row[3], K(x, y), 1e-12) << "kappa at " << x << "," << y;
+    EXPECT_NEAR(row[4], 0.5 * y, 1e-14);
+    EXPECT_NEAR(row[5], D(x, y), 1e-13) << "D_norm at " << x << "," << y;
+    EXPECT_NEAR(row[6], S(x, y), 1e-13) << "S_norm at " << x << "," << y;
+  }
+  const Table u = read_csv(dir / "probes" / "only_u.csv");
+  EXPECT_EQ(u.header, "t,x,y,u");
+  EXPECT_EQ(u.rows.size(), 3u);  // one block: the refused writes wrote nothing
+  const Table y = read_csv(dir / "own" / "probes" / "y.csv");
+  EXPECT_EQ(y.header, "t,x,y,yielded");
+  ASSERT_EQ(y.rows.size(), 2u);
+  EXPECT_NEAR(y.rows[1][3], K(0.8, 0.5), 1e-12);
+}
+
 TEST_F(IoTest, ProbeSpecErrors) {
   Grid g(PETSC_COMM_WORLD, 16, 12, 1.6, 0.6);
   auto make = [&](gf::io::ProbeSpec s) {
@@ -396,14 +478,14 @@ void write_everything(MPI_Comm comm, const fs::path& out) {
   gf::io::ProbeWriter probes(
       g, out.string(),
       {{"horizontal", 0.0, 0.41, 1.0, 0.41, 23, {"phi", "u", "v", "speed", "p"}},
-       {"vertical", 0.5, 0.0, 0.5, 0.8, 17, {"rho", "eta", "v", "p"}},
+       {"vertical", 0.5, 0.0, 0.5, 0.8, 17, {"rho", "eta", "v", "p", "kappa"}},
        {"point", 0.73, 0.12, 0.73, 0.12, 1, {"speed"}}});
   gf::io::CsvWriter csv((out / "diagnostics.csv").string(),
                         {"t", "max_speed", "max_divergence", "max_eta_granular"}, comm);
   for (double t : {0.0, 0.1}) {
     vtk.write(t, {{"phi", s.phi, 1}, {"u", uv, 2}, {"speed", speed, 1}, {"p", s.p, 1},
                   {"S", s.S, 3}});
-    probes.write(t, s.phi, s.rho, s.vel, s.p, s.eta);
+    probes.write(t, s.phi, s.rho, s.vel, s.p, s.eta, {{"kappa", s.rho}});
     csv.row({t, gf::diag::max_speed(g, s.vel), gf::diag::max_divergence(g, s.vel),
              gf::diag::max_in_granular(g, s.eta, s.phi)});
     GF_PETSC(VecScale(s.p, 0.5));
