@@ -20,7 +20,8 @@ namespace {
 // Names as written in case files, indexed by the enumerators of CaseConfig: the schema's
 // choices and the string -> enum conversion both come from these, so they cannot drift.
 const std::vector<std::string> kDtModes{"adaptive", "fixed"};
-const std::vector<std::string> kShapes{"none", "rectangle", "layer", "circle", "zalesak"};
+const std::vector<std::string> kShapes{"none",   "rectangle", "layer",
+                                       "circle", "zalesak",   "trapezoid"};
 const std::vector<std::string> kPrescribed{"none", "rotation", "single_vortex"};
 const std::vector<std::string> kInitialVelocities{"none", "vortex"};
 const std::vector<std::string> kWalls{"free_slip", "no_slip", "navier"};
@@ -191,7 +192,8 @@ Params case_params() {
              "Initial granular region (phi < 0): none; rectangle [x0, x1] x [y0, y1] (the "
              "column); layer 0 <= y <= height; circle (cx, cy, radius); zalesak: the circle "
              "with a vertical slot slot_width wide cut slot_depth up from its bottom, "
-             "centred on cx (Zalesak's disc).");
+             "centred on cx (Zalesak's disc); trapezoid: a pile on the bottom, base [x0, x1], "
+             "height `height`, both sides sloping at `slope`.");
   p.add_real("initial.x0", "m", 0.0, Range::any(), "rectangle: left edge.");
   p.add_real("initial.x1", "m", 0.2, Range::any(), "rectangle: right edge (the gate).");
   p.add_real("initial.y0", "m", 0.0, Range::any(), "rectangle: bottom edge.");
@@ -203,6 +205,8 @@ Params case_params() {
   p.add_real("initial.slot_width", "m", 0.05, Range::gt(0), "zalesak: slot width.");
   p.add_real("initial.slot_depth", "m", 0.25, Range::gt(0),
              "zalesak: slot depth, from the bottom of the disc.");
+  p.add_real("initial.slope", "degrees", 20.0, Range::open(0, 90),
+             "trapezoid: angle of both sides of the pile with the horizontal.");
   p.add_enum("initial.velocity", "none", kInitialVelocities,
              "Initial velocity: none = at rest; vortex = one divergence-free cell from the "
              "stream function psi = A (Lx/pi) sin^2(pi x/Lx) sin^2(pi y/Ly) (with "
@@ -305,6 +309,7 @@ double granular_top(const CaseConfig& c) {
     case Shape::Rectangle:
       return c.initial.y1;
     case Shape::Layer:
+    case Shape::Trapezoid:
       return c.initial.height;
     case Shape::Circle:
     case Shape::Zalesak:
@@ -371,6 +376,7 @@ CaseConfig fill(const Params& p) {
   in.radius = p.get_real("initial.radius");
   in.slot_width = p.get_real("initial.slot_width");
   in.slot_depth = p.get_real("initial.slot_depth");
+  in.slope_deg = p.get_real("initial.slope");
   in.velocity =
       enum_of<CaseConfig::InitialVelocity>(kInitialVelocities, p.get_string("initial.velocity"));
   in.velocity_amplitude = p.get_real("initial.velocity_amplitude");
@@ -515,6 +521,23 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
     errors.add(p.where("initial.height") + ": the layer " +
                (c.initial.height > Ly ? "must lie inside the domain" : "touches the top") +
                ": must be <= " + y_top_text);
+  if (geom_ok && c.initial.shape == Shape::Trapezoid &&
+      ok({"initial.x0", "initial.x1", "initial.height", "initial.slope"})) {
+    const auto& in = c.initial;
+    const double run = in.height / std::tan(in.slope_deg * std::numbers::pi / 180);
+    if (in.x0 < 0)
+      errors.add(p.where("initial.x0") + ": the pile must lie inside the domain: must be >= 0");
+    if (in.x1 > Lx)
+      errors.add(p.where("initial.x1") +
+                 ": the pile must lie inside the domain: must be <= domain.Lx = " + m(Lx));
+    if (in.x1 - in.x0 <= 2 * run)
+      errors.add(p.where("initial.x1") + ": the pile has no top: needs x1 - x0 > 2 height / "
+                 "tan(slope) = " + m(2 * run));
+    if (in.height > y_top)
+      errors.add(p.where("initial.height") + ": the pile " +
+                 (in.height > Ly ? "must lie inside the domain" : "touches the top") +
+                 ": must be <= " + y_top_text);
+  }
   const bool disc = c.initial.shape == Shape::Circle || c.initial.shape == Shape::Zalesak;
   if (geom_ok && disc && ok({"initial.cx", "initial.cy", "initial.radius"})) {
     const auto& in = c.initial;
@@ -728,7 +751,8 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
   };
   const std::vector<std::string> shape_keys{
       "initial.x0", "initial.x1", "initial.y0",     "initial.y1",         "initial.height",
-      "initial.cx", "initial.cy", "initial.radius", "initial.slot_width", "initial.slot_depth"};
+      "initial.cx", "initial.cy", "initial.radius", "initial.slot_width", "initial.slot_depth",
+      "initial.slope"};
   std::vector<std::string> shape_used;
   switch (c.initial.shape) {
     case Shape::Rectangle:
@@ -743,6 +767,9 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
     case Shape::Zalesak:
       shape_used = {"initial.cx", "initial.cy", "initial.radius", "initial.slot_width",
                     "initial.slot_depth"};
+      break;
+    case Shape::Trapezoid:
+      shape_used = {"initial.x0", "initial.x1", "initial.height", "initial.slope"};
       break;
     case Shape::None:
       break;

@@ -18,7 +18,7 @@ namespace gf {
 
 struct CaseConfig {
   enum class DtMode { Adaptive, Fixed };
-  enum class Shape { None, Rectangle, Layer, Circle, Zalesak };
+  enum class Shape { None, Rectangle, Layer, Circle, Zalesak, Trapezoid };
   enum class Prescribed { None, Rotation, SingleVortex };
   // Initial velocity field (initial.velocity): none = rest; vortex = a divergence-free cell
   // from a stream function (sim/Setup.hpp), amplitude initial.velocity_amplitude.
@@ -69,6 +69,7 @@ struct CaseConfig {
     double height = 0;                      // m, layer
     double cx = 0, cy = 0, radius = 0;      // m, circle and Zalesak disc
     double slot_width = 0, slot_depth = 0;  // m, Zalesak slot
+    double slope_deg = 0;                   // degrees, trapezoid side slopes (a pile)
     InitialVelocity velocity = InitialVelocity::None;
     double velocity_amplitude = 0;  // m/s, peak speed scale of the initial vortex
     bool operator==(const Initial&) const = default;

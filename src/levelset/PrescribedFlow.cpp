@@ -119,6 +119,20 @@ void init_rectangle(const Grid& g, Vec phi, double x0, double x1, double y0, dou
   fill_cells(g, phi, [=](double x, double y) { return rectangle_distance(x, y, x0, x1, y0, y1); });
 }
 
+double trapezoid_distance(double x, double y, double x0, double x1, double h, double slope_deg) {
+  const double run = h / std::tan(slope_deg * std::numbers::pi / 180);
+  const double xl = x0 + run, xr = x1 - run;  // ends of the top
+  const double d = std::min({segment_distance(x, y, x0, 0.0, xl, h),
+                             segment_distance(x, y, xl, h, xr, h),
+                             segment_distance(x, y, xr, h, x1, 0.0)});
+  const bool inside = y < h && x > x0 + y / h * run && x < x1 - y / h * run;
+  return inside ? -d : d;
+}
+
+void init_trapezoid(const Grid& g, Vec phi, double x0, double x1, double h, double slope_deg) {
+  fill_cells(g, phi, [=](double x, double y) { return trapezoid_distance(x, y, x0, x1, h, slope_deg); });
+}
+
 void init_layer(const Grid& g, Vec phi, double height) {
   fill_cells(g, phi, [=](double, double y) { return y - height; });
 }

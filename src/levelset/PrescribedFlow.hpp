@@ -66,6 +66,11 @@ void init_circle(const Grid& g, Vec phi, double cx, double cy, double r);
 void init_zalesak(const Grid& g, Vec phi, double cx, double cy, double r, double slot_width,
                   double slot_depth);
 void init_rectangle(const Grid& g, Vec phi, double x0, double x1, double y0, double y1);
-void init_layer(const Grid& g, Vec phi, double height);  // phi = y - height
+void init_layer(const Grid& g, Vec phi, double height);
+// A pile on the bottom wall: the trapezoid with base [x0, x1] on y = 0, height h and both sides
+// at slope_deg to the horizontal; phi is the distance to its free sides (the two slopes and the
+// top), negative inside. The base lies on the wall and is not an interface.
+double trapezoid_distance(double x, double y, double x0, double x1, double h, double slope_deg);
+void init_trapezoid(const Grid& g, Vec phi, double x0, double x1, double h, double slope_deg);  // phi = y - height
 
 }  // namespace gf::levelset

@@ -111,6 +111,9 @@ void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi) {
     }
     case CaseConfig::Shape::Layer: levelset::init_layer(g, phi, in.height); break;
     case CaseConfig::Shape::Circle: levelset::init_circle(g, phi, in.cx, in.cy, in.radius); break;
+    case CaseConfig::Shape::Trapezoid:
+      levelset::init_trapezoid(g, phi, in.x0, in.x1, in.height, in.slope_deg);
+      break;
     case CaseConfig::Shape::Zalesak:
       levelset::init_zalesak(g, phi, in.cx, in.cy, in.radius, in.slot_width, in.slot_depth);
       break;

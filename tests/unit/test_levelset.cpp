@@ -459,3 +459,21 @@ TEST(LevelSetZalesak, OneTurnAt64) {
   EXPECT_LT(std::abs(loss), 0.08);
   EXPECT_LT(l1, 0.5 * h * perimeter);
 }
+
+// The pile: base [0.1, 0.5] on the wall, height 0.1, sides at 45 deg (run 0.1): top [0.2, 0.4].
+TEST(LevelSetShapes, TrapezoidDistanceToItsFreeSides) {
+  using gf::levelset::trapezoid_distance;
+  const double x0 = 0.1, x1 = 0.5, h = 0.1, s = 45.0;
+  EXPECT_NEAR(trapezoid_distance(0.3, 0.15, x0, x1, h, s), 0.05, 1e-12);   // above the top
+  EXPECT_NEAR(trapezoid_distance(0.3, 0.08, x0, x1, h, s), -0.02, 1e-12);  // below the top
+  // Beside the left slope, along its outward normal (-1, 1)/sqrt 2 from (0.15, 0.05).
+  const double d = 0.03;
+  EXPECT_NEAR(trapezoid_distance(0.15 - d / std::sqrt(2.0), 0.05 + d / std::sqrt(2.0), x0, x1, h, s),
+              d, 1e-12);
+  EXPECT_NEAR(trapezoid_distance(0.15 + d / std::sqrt(2.0), 0.05 - d / std::sqrt(2.0), x0, x1, h, s),
+              -d, 1e-12);
+  // The base lies on the wall: inside, next to it, the distance is to the sides, not to y = 0.
+  EXPECT_NEAR(trapezoid_distance(0.3, 0.001, x0, x1, h, s), -0.099, 1e-12);
+  // Beyond the corner of the top: the distance to the vertex (0.4, 0.1).
+  EXPECT_NEAR(trapezoid_distance(0.45, 0.15, x0, x1, h, s), std::hypot(0.05, 0.05), 1e-12);
+}
