@@ -10,8 +10,6 @@
 //   Navier slip (eq. 24)        eta d(u_t)/dn + eta_b u_t = 0   -> with the wall value
 //        u_w = eta u_c / (eta + eta_b d), the flux is -eta_b u_w  -> c = eta eta_b / (eta + eta_b d)
 // (Navier with eta_b -> infinity is no slip, eta_b = 0 is free slip.)
-#include <string>
-
 namespace gf {
 
 enum class WallType { FreeSlip, NoSlip, Navier };
@@ -36,10 +34,5 @@ inline double wall_coefficient(const WallBC& w, double eta, double d) {
   return 0.0;
 }
 
-inline WallType wall_type_from_string(const std::string& s) {
-  if (s == "no_slip") return WallType::NoSlip;
-  if (s == "navier") return WallType::Navier;
-  return WallType::FreeSlip;
-}
 
 }  // namespace gf

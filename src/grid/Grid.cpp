@@ -76,6 +76,11 @@ long long Grid::sum(long long local) const {
   return g;
 }
 
+void to_local(DM dm, Vec global, Vec local) {
+  GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, local));
+  GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, local));
+}
+
 void fill_velocity_ghosts(const Grid& g, Vel** vel) {
   const Box& b = g.box();
   const PetscInt G = Grid::kGhost;

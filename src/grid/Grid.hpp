@@ -89,6 +89,9 @@ class Grid {
      dm_visc_ = nullptr;
 };
 
+// Ghost exchange of a global Vec into a local (ghosted) Vec of the same DM.
+void to_local(DM dm, Vec global, Vec local);
+
 // Sets the normal velocity on the four walls of a LOCAL (ghosted) velocity array to zero:
 // faces i = 0 and i = nx for u, j = 0 and j = ny for v (eq. 20). Tangential ghost values
 // outside the domain are set to NaN-free copies (mirror), never used by kernels that drop

@@ -62,13 +62,6 @@ Predictor::~Predictor() {
   MatDestroy(&A_);
 }
 
-namespace {
-void to_local(DM dm, Vec global, Vec local) {
-  GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, local));
-  GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, local));
-}
-}  // namespace
-
 void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
   const Box& b = g_.box();
   to_local(g_.dm_cell(), rho, lrho_);

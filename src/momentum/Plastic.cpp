@@ -12,10 +12,6 @@
 namespace gf::momentum {
 
 namespace {
-void to_local(DM dm, Vec global, Vec local) {
-  GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, local));
-  GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, local));
-}
 // Ghosted copy of a global Vec for the duration of a scope, from the DM's pool of local vectors
 // (DMGetLocalVector: no allocation after the first use, as these run in every fixed-point
 // iteration).
