@@ -3,10 +3,10 @@
 # a rigid granular block (Bingham, tau_y = 2e4 Pa) on the bottom wall under gravity tilted by
 # theta, wall friction alpha_b = 20 deg.
 #  1. theta = 30 deg: the block slides with a = g (sin theta - tan alpha_b cos theta)
-#     = 1.8128 m/s^2. Measured (mean granular velocity / t at t = 0.06 s): n = 30 -> +12.8 %,
-#     n = 60 -> +7.1 %: first-order convergence towards the exact value (the smeared interface,
-#     eps = 1.5 h, at the block's ends). The test requires the error to fall with h and to be
-#     below 16 % / 10 %: the 2 % target is NOT reached at these grids.
+#     = 1.8128 m/s^2. Measured (mean granular velocity / t at t = 0.06 s): n = 30 -> +4.5 %,
+#     n = 60 -> +3.3 % (with rheology.fp_tol = 1e-8: +3.9 %, +3.8 %; n = 120: +7.1 % at the
+#     default tolerance). A systematic ~4 % remains, not identified. The test requires the
+#     error to fall with h and to be below 6 % / 5 %: the 2 % target is NOT reached.
 #  2. theta = 15 deg < alpha_b: the block holds. Required: mean granular speed below 1e-3 m/s
 #     at every output (sliding without friction would reach g sin(theta) t = 0.25 m/s at 0.1 s).
 # Usage: bash test_coulomb_block.sh <granflow binary> <source dir>
@@ -36,7 +36,7 @@ g, th, ab = 9.81, math.radians(30), math.radians(20)
 exact = g * (math.sin(th) - math.tan(ab) * math.cos(th))
 e30, e60 = abs(a30 / exact - 1), abs(a60 / exact - 1)
 print(f"sliding block: exact a = {exact:.4f} m/s^2; n=30: {a30:.4f} ({100*e30:.1f} %), n=60: {a60:.4f} ({100*e60:.1f} %)")
-ok = e60 < e30 and e30 < 0.16 and e60 < 0.10
+ok = e60 < e30 and e30 < 0.06 and e60 < 0.05
 print("PASS" if ok else "FAIL: acceleration error does not fall with h or is too large")
 sys.exit(0 if ok else 1)
 PY
