@@ -78,6 +78,7 @@ RunSummary Simulation::run() {
   double max_div_run = 0;
   long long fp_capped_steps = 0;  // steps whose fixed point stopped at its cap (a warning)
   int max_fp_iters = 0;
+  long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
 
   auto write_diag = [&]() {
     const double vol = volume();
@@ -140,6 +141,8 @@ RunSummary Simulation::run() {
     }
     last = stepper_.step(s_, dt);
     if (last.fp_capped) ++fp_capped_steps;
+    mu_floor_max = std::max(mu_floor_max, last.mu_i_floor_cells);
+    mu_cap_max = std::max(mu_cap_max, last.mu_i_cap_cells);
     max_fp_iters = std::max(max_fp_iters, last.fp_iters);
     dt_prev = dt;
     // Failure detection: a non-finite velocity or pressure anywhere stops the run.
@@ -191,7 +194,9 @@ RunSummary Simulation::run() {
       .set("max_speed", diag::max_speed(g_, s_.vel))
       .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho))
       .set("max_fp_iters", static_cast<long long>(max_fp_iters))
-      .set("warnings_fp_capped_steps", fp_capped_steps);
+      .set("warnings_fp_capped_steps", fp_capped_steps)
+      .set("mu_i_floor_cells_max", mu_floor_max)
+      .set("mu_i_cap_cells_max", mu_cap_max);
   if (prescribed && cfg.levelset) {
     // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
     const double a0 = levelset::granular_area(g_, phi0, 0.0);

@@ -97,12 +97,22 @@ void Stepper::mu_i_viscosity(State& s) {
     PetscScalar** es;
     GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), D_, &d));
     GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.p, &pa));
+    const PetscScalar** ph;
     GF_PETSC(DMDAVecGetArray(g_.dm_cell(), eta_s_, &es));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.phi, &ph));
+    long long at_floor = 0, at_cap = 0;  // granular cells where the declared bounds act
     for (PetscInt j = b.ys; j < b.ye(); ++j)
       for (PetscInt i = b.xs; i < b.xe(); ++i) {
         const double dxx = 0.5 * (d[j][i][0] - d[j][i][2]), dxy = d[j][i][1];
         es[j][i] = rheology::mu_i_viscosity(cfg_.rheo, std::hypot(dxx, dxy), pa[j][i], cfg_.rho_gran);
+        if (ph[j][i] < 0 || !cfg_.levelset) {
+          if (es[j][i] <= cfg_.rheo.eta_min) ++at_floor;
+          if (es[j][i] >= cfg_.rheo.eta_max) ++at_cap;
+        }
       }
+    mu_i_floor_cells_ = g_.sum(at_floor);
+    mu_i_cap_cells_ = g_.sum(at_cap);
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.phi, &ph));
     GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), eta_s_, &es));
     GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.p, &pa));
     GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), D_, &d));
@@ -325,6 +335,8 @@ StepStats Stepper::step(State& s, double dt) {
       }
     }
     st.fp_capped = st.fp_change >= cfg_.rheo.fp_tol;
+    st.mu_i_floor_cells = mu_i_floor_cells_;
+    st.mu_i_cap_cells = mu_i_cap_cells_;
   }
   // 4. Projection, eq. 32.
   if (props_change) projector_->assemble(s.rho);

@@ -50,6 +50,8 @@ struct StepStats {
   int fp_iters = 0;                // fixed-point iterations of eq. 31
   double fp_change = 0;            // last change of S and s_t (dimensionless)
   bool fp_capped = false;          // stopped at fp_max_iter without reaching fp_tol
+  long long mu_i_floor_cells = 0;  // granular cells where the mu(I) viscosity is at eta_min
+  long long mu_i_cap_cells = 0;    // ... and at eta_max (rheology.eta_min / eta_max)
   bool redistanced = false;
 };
 
@@ -87,6 +89,7 @@ class Stepper {
   std::unique_ptr<projection::Projector> projector_;
   double assembled_a0dt_ = -1;  // a0/dt of the assembled viscous matrix, 1/s
   bool plastic_ = false;
+  long long mu_i_floor_cells_ = 0, mu_i_cap_cells_ = 0;
   bool fp_monitor_ = false;
   Vec rhs0_mon_ = nullptr;  // previous u~ for -fp_monitor
   Vec gS_ = nullptr, gW_ = nullptr;  // G(x) of the fixed point: projected S and s_t
