@@ -50,9 +50,11 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool p
                                      periodic_x ? Lx + 0.5 * box_.hx : Lx - 0.5 * box_.hx,
                                      0.5 * box_.hy, Ly - 0.5 * box_.hy, 0, 0));
   GF_PETSC(DMDAGetCorners(dm_cell_, &box_.xs, &box_.ys, nullptr, &box_.xm, &box_.ym, nullptr));
+  MPI_Comm_split(comm, static_cast<int>(box_.xs), -static_cast<int>(box_.ys), &comm_column_);
 }
 
 Grid::~Grid() {
+  if (comm_column_ != MPI_COMM_NULL) MPI_Comm_free(&comm_column_);
   DMDestroy(&dm_visc_);
   DMDestroy(&dm_pres_);
   DMDestroy(&dm_ten_);

@@ -75,6 +75,9 @@ class Grid {
   DM dm_ten() const { return dm_ten_; }    // dof 3, box stencil, width 1: S = (Sxx, Sxy, Syy)
   DM dm_pres() const { return dm_pres_; }  // dof 1, star stencil, width 1: pressure matrix
   DM dm_visc() const { return dm_visc_; }  // dof 2, box stencil, width 1: viscous matrix
+  // The ranks that own the same x range (a process column), ordered from the top down: for
+  // sums along vertical columns (the hydrostatic pressure of eq. 15).
+  MPI_Comm comm_column() const { return comm_column_; }
 
   // Collective sums and maxima over all ranks.
   double sum(double local) const;
@@ -83,6 +86,7 @@ class Grid {
 
  private:
   MPI_Comm comm_;
+  MPI_Comm comm_column_ = MPI_COMM_NULL;
   int rank_ = 0, size_ = 1;
   Box box_;
   DM dm_cell_ = nullptr, dm_vel_ = nullptr, dm_ten_ = nullptr, dm_pres_ = nullptr,

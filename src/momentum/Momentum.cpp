@@ -84,6 +84,10 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
   const double hx = b.hx, hy = b.hy, hx2 = hx * hx, hy2 = hy * hy, hxy = hx * hy;
   MatStencil row, col[12];
   PetscScalar val[12];
+  int n = 0;  // entries of the current row
+  auto add = [&](PetscInt ii, PetscInt jj, PetscInt cc, double v) {
+    col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = cc; val[n] = v; ++n;
+  };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       // ---- x-momentum, unknown u on the left face of cell (i, j) ----
@@ -94,11 +98,8 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         val[0] = a0dt * r[j][i];
         GF_PETSC(MatSetValuesStencil(A_, 1, &row, 1, col, val, INSERT_VALUES));
       } else {
-        int n = 0;
+        n = 0;
         double diag = a0dt * ops::rho_xface(r, i, j);
-        auto add = [&](PetscInt ii, PetscInt jj, PetscInt cc, double v) {
-          col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = cc; val[n] = v; ++n;
-        };
         // normal stress 2 eta du/dx at the centres of cells i-1 and i (periodic x: the
         // columns -1 / nx wrap in MatSetValuesStencil, cell i-1 = -1 is a ghost)
         diag += 2 * (ec[j][i] + ec[j][i - 1]) / hx2;
@@ -141,11 +142,8 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         val[0] = a0dt * r[j][i];
         GF_PETSC(MatSetValuesStencil(A_, 1, &row, 1, col, val, INSERT_VALUES));
       } else {
-        int n = 0;
+        n = 0;
         double diag = a0dt * ops::rho_yface(r, i, j);
-        auto add = [&](PetscInt ii, PetscInt jj, PetscInt cc, double v) {
-          col[n].i = ii; col[n].j = jj; col[n].k = 0; col[n].c = cc; val[n] = v; ++n;
-        };
         diag += 2 * (ec[j][i] + ec[j - 1][i]) / hy2;
         if (j + 1 < b.ny) add(i, j + 1, 1, -2 * ec[j][i] / hy2);
         if (j - 1 >= 1) add(i, j - 1, 1, -2 * ec[j - 1][i] / hy2);

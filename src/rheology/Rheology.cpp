@@ -16,15 +16,13 @@ void hydrostatic_pressure(const Grid& g, Vec c, double rho_s, double g_abs, Vec 
   std::vector<double> local(b.xm, 0.0), above(b.xm, 0.0);
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) local[i - b.xs] += ca[j][i] * b.hy;
-  // Ranks in the same process column (same x range), ordered from the top down, so that an
-  // exclusive prefix sum gives the thickness held by the ranks above.
-  MPI_Comm col;
-  MPI_Comm_split(g.comm(), static_cast<int>(b.xs), -static_cast<int>(b.ys), &col);
-  MPI_Exscan(local.data(), above.data(), static_cast<int>(b.xm), MPI_DOUBLE, MPI_SUM, col);
+  // The thickness held by the ranks above: an exclusive prefix sum over the process column,
+  // whose ranks are ordered from the top down (Grid::comm_column).
+  MPI_Exscan(local.data(), above.data(), static_cast<int>(b.xm), MPI_DOUBLE, MPI_SUM,
+             g.comm_column());
   int crank = 0;
-  MPI_Comm_rank(col, &crank);
+  MPI_Comm_rank(g.comm_column(), &crank);
   if (crank == 0) std::fill(above.begin(), above.end(), 0.0);  // Exscan leaves rank 0 undefined
-  MPI_Comm_free(&col);
   for (PetscInt i = b.xs; i < b.xe(); ++i) {
     double acc = above[i - b.xs];  // thickness above the top of this rank's rows
     for (PetscInt j = b.ye() - 1; j >= b.ys; --j) {

@@ -87,7 +87,8 @@ RunSummary Simulation::run() {
     max_div_run = std::max(max_div_run, div);
     const auto gu = diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
     // Where the granular material sticks to / slides on the back wall and the bottom (eqs. 22-23).
-    const auto stick = stepper_.wall_stick_m(s_), slide = stepper_.wall_slide_m(s_);
+    const auto wc = stepper_.wall_contact(s_);
+    const auto &stick = wc.stick_m, &slide = wc.slide_m;
     csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
              diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),

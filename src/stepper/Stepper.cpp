@@ -170,13 +170,9 @@ void Stepper::update_yield(State& s) {
   predictor_->wall_yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
 }
 
-std::array<double, 4> Stepper::wall_stick_m(const State& s) const {
-  if (!predictor_ || !predictor_->has_wall_friction()) return {0, 0, 0, 0};
-  return predictor_->wall_contact(s.s_wall, kappa_b_).stick_m;
-}
-std::array<double, 4> Stepper::wall_slide_m(const State& s) const {
-  if (!predictor_ || !predictor_->has_wall_friction()) return {0, 0, 0, 0};
-  return predictor_->wall_contact(s.s_wall, kappa_b_).slide_m;
+momentum::Predictor::WallContact Stepper::wall_contact(const State& s) const {
+  if (!predictor_ || !predictor_->has_wall_friction()) return {};
+  return predictor_->wall_contact(s.s_wall, kappa_b_);
 }
 
 void Stepper::derived_fields(State& s, Vec Dnorm, Vec Snorm, Vec yielded) {

@@ -12,6 +12,7 @@
 #include "boundary/Boundary.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
+#include "momentum/Momentum.hpp"
 #include "rheology/Rheology.hpp"
 
 namespace gf {
@@ -72,9 +73,8 @@ class Stepper {
   Vec eta_node() const { return eta_node_; }
   Vec kappa() const { return kappa_; }
   // Lengths (m) of granular contact sticking / sliding on each frictional wall (left, right,
-  // bottom, top), from the last step's s_t and kappa_b; zeros without wall friction.
-  std::array<double, 4> wall_stick_m(const State& s) const;
-  std::array<double, 4> wall_slide_m(const State& s) const;
+  // bottom, top), from the last step's s_t and kappa_b; zeros without wall friction. Collective.
+  momentum::Predictor::WallContact wall_contact(const State& s) const;
   // Output fields: |D(u^n)| (1/s), |S| and the yielded mask (1 where |S| >= 1 - 1e-12, i.e. the
   // material flows; 0 where rigid), all cell centred (dm_cell).
   void derived_fields(State& s, Vec Dnorm, Vec Snorm, Vec yielded);
