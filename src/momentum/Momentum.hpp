@@ -79,6 +79,10 @@ class Predictor {
   // (|s_t| = 1, eq. 22). Index: side (left, right, bottom, top); collective.
   struct WallContact {
     std::array<double, 4> stick_m{0, 0, 0, 0}, slide_m{0, 0, 0, 0};
+    // Per metre of depth, N/m: the granular normal load carried by the wall, sum of
+    // (-T_n)^+ over its Coulomb faces, and the friction force sum kappa_b s_t (signed, along +x
+    // on the bottom and top, +y on the side walls).
+    std::array<double, 4> normal_N{0, 0, 0, 0}, friction_N{0, 0, 0, 0};
   };
   WallContact wall_contact(Vec s_wall, Vec kappa_b) const;
   double update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,

@@ -272,12 +272,16 @@ Predictor::WallContact Predictor::wall_contact(Vec s_wall, Vec kappa_b) const {
   const Vel **sw, **kb;
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), s_wall, &sw));
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), kappa_b, &kb));
-  double loc[8] = {0, 0, 0, 0, 0, 0, 0, 0}, glob[8];
+  double loc[16] = {}, glob[16];
   // A face counts when it carries a Coulomb stress (kappa_b > 0: granular and frictional).
+  // Per side: stick length, slide length, the normal load sum kappa_b / tan(alpha_b) len and
+  // the tangential force sum kappa_b s_t len (N/m; the sign of s_t is along +x or +y).
   auto add = [&](int side, double s, double k, double len) {
     if (k <= 0) return;
     const bool slide = std::abs(s) >= 1.0 - 1e-9;
     loc[side + (slide ? 4 : 0)] += len;
+    loc[8 + side] += k / tan_b_[side] * len;
+    loc[12 + side] += k * s * len;
   };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
@@ -288,11 +292,13 @@ Predictor::WallContact Predictor::wall_contact(Vec s_wall, Vec kappa_b) const {
     }
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), kappa_b, &kb));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), s_wall, &sw));
-  MPI_Allreduce(loc, glob, 8, MPI_DOUBLE, MPI_SUM, g_.comm());
+  MPI_Allreduce(loc, glob, 16, MPI_DOUBLE, MPI_SUM, g_.comm());
   WallContact wc;
   for (int k = 0; k < 4; ++k) {
     wc.stick_m[k] = glob[k];
     wc.slide_m[k] = glob[k + 4];
+    wc.normal_N[k] = glob[k + 8];
+    wc.friction_N[k] = glob[k + 12];
   }
   return wc;
 }

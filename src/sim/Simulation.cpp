@@ -58,7 +58,8 @@ RunSummary Simulation::run() {
                     {"t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed",
                      "granular_u", "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
                      "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m",
-                     "bottom_slide_m"},
+                     "bottom_slide_m", "left_normal_N", "left_friction_N", "bottom_normal_N",
+                     "bottom_friction_N"},
                     g_.comm());
   io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes);
   Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
@@ -93,7 +94,7 @@ RunSummary Simulation::run() {
              diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
              static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
-             slide[2]});
+             slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2]});
     // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
     io::NamedCellFields extra;
     if (probes.samples("D_norm") || probes.samples("S_norm")) {

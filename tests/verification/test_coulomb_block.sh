@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Coulomb friction on a wall (eqs. 22-23, 30; ../shared/reference/analytical_solutions.md (c)):
-# a rigid granular block (Bingham, tau_y = 2e4 Pa) on the bottom wall under gravity tilted by
+# a rigid granular block (Bingham, tau_y = 2000 Pa) on the bottom wall under gravity tilted by
 # theta, wall friction alpha_b = 20 deg.
 #  1. theta = 30 deg: the block slides with a = g (sin theta - tan alpha_b cos theta)
-#     = 1.8128 m/s^2. Measured (mean granular velocity / t at t = 0.06 s): n = 30 -> +4.5 %,
-#     n = 60 -> +3.3 % (with rheology.fp_tol = 1e-8: +3.9 %, +3.8 %; n = 120: +7.1 % at the
-#     default tolerance). A systematic ~4 % remains, not identified. The test requires the
-#     error to fall with h and to be below 6 % / 5 %: the issue's 2 % target is NOT reached.
+#     = 1.8128 m/s^2. The acceleration is the least-squares slope of the mean granular velocity
+#     over t in [0.02, 0.2] s. The first steps are excluded: starting from S = 0 and s_t = 0, the
+#     plastic stresses of the paper's relaxed fixed point (theta (S^n - S) in eq. 31) take a few
+#     steps to carry the load (the initial pressure is the inviscid one, lower at the block's
+#     edges), so the block gains a velocity offset of ~3e-3 m/s in the first 5 ms; after that it
+#     accelerates at the Coulomb rate. Measured: n = 30 +2.3 %, n = 60 +0.5 % (docs/RHEOLOGY.md).
+#     Required: the error falls with h and is below 2 % at n = 60 (the issue's target), 4 % at
+#     n = 30; the mean friction force is within 2 % of tan(alpha_b) m g cos(theta).
 #  2. theta = 15 deg < alpha_b: the block holds. Required: mean granular speed below 1e-3 m/s
 #     at every output (sliding without friction would reach g sin(theta) t = 0.25 m/s at 0.1 s).
 # Usage: bash test_coulomb_block.sh <granflow binary> <source dir>
@@ -16,28 +20,35 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 case_file="$src/cases/verify/coulomb_block.toml"
 
-accel() {  # mean granular u / t at the last output
-  /usr/bin/python3 - "$1" <<'PY'
-import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1] + "/diagnostics.csv")))
-r = rows[-1]
-print(float(r["granular_u"]) / float(r["t"]))
-PY
-}
 for n in 30 60; do
-  "$bin" run "$case_file" --set grid.n=$n --set time.t_end=0.06 --set output.interval=0.02 \
-    --out "$tmp/slide$n" > "$tmp/log$n" 2>&1 || { cat "$tmp/log$n"; echo "FAIL: run n=$n"; exit 1; }
+  "$bin" run "$case_file" --set grid.n=$n --out "$tmp/slide$n" > "$tmp/log$n" 2>&1 &
 done
-a30=$(accel "$tmp/slide30"); a60=$(accel "$tmp/slide60")
-/usr/bin/python3 - "$a30" "$a60" <<'PY'
-import math, sys
-a30, a60 = map(float, sys.argv[1:])
+wait || true
+for n in 30 60; do
+  [ -f "$tmp/slide$n/summary.json" ] || { cat "$tmp/log$n"; echo "FAIL: run n=$n"; exit 1; }
+done
+/usr/bin/python3 - "$tmp" <<'PY'
+import csv, math, sys
+import numpy as np
 g, th, ab = 9.81, math.radians(30), math.radians(20)
 exact = g * (math.sin(th) - math.tan(ab) * math.cos(th))
-e30, e60 = abs(a30 / exact - 1), abs(a60 / exact - 1)
-print(f"sliding block: exact a = {exact:.4f} m/s^2; n=30: {a30:.4f} ({100*e30:.1f} %), n=60: {a60:.4f} ({100*e60:.1f} %)")
-ok = e60 < e30 and e30 < 0.06 and e60 < 0.05
-print("PASS" if ok else "FAIL: acceleration error does not fall with h or is too large")
+# block 0.1 m x 0.05 m of rho 1550: the friction force at the Coulomb limit, N/m
+f_exact = math.tan(ab) * 1550 * 0.1 * 0.05 * g * math.cos(th)
+err, ferr = {}, {}
+for n in (30, 60):
+    rows = list(csv.DictReader(open(f"{sys.argv[1]}/slide{n}/diagnostics.csv")))
+    t = np.array([float(r["t"]) for r in rows]); u = np.array([float(r["granular_u"]) for r in rows])
+    f = np.array([float(r["bottom_friction_N"]) for r in rows])
+    m = t >= 0.02 - 1e-12
+    a = np.polyfit(t[m], u[m], 1)[0]
+    err[n] = a / exact - 1
+    ferr[n] = abs(f[m].mean()) / f_exact - 1
+    print(f"n={n}: a = {a:.4f} m/s^2 (exact {exact:.4f}, {100*err[n]:+.2f} %), offset u(t) - exact t at "
+          f"t = 0.2 s: {u[-1] - exact * t[-1]:.2e} m/s, mean friction {abs(f[m].mean()):.3f} N/m "
+          f"(exact {f_exact:.3f}, {100*ferr[n]:+.2f} %)")
+ok = abs(err[60]) < abs(err[30]) and abs(err[30]) < 0.04 and abs(err[60]) < 0.02 \
+     and all(abs(e) < 0.02 for e in ferr.values())
+print("PASS" if ok else "FAIL: acceleration error does not fall with h, or is above 4 % (n=30) / 2 % (n=60), or the friction force is off by more than 2 %")
 sys.exit(0 if ok else 1)
 PY
 "$bin" run "$case_file" --set "physics.gravity=[2.539024, -9.475746]" --set time.t_end=0.1 \
