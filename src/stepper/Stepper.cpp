@@ -230,6 +230,15 @@ void Stepper::initialize(State& s) {
   projector_->project(u_tilde_, s.p, s.rho, 1.0, 1.0);
 }
 
+void Stepper::resume(State& s) {
+  if (predictor_) predictor_->set_phase(s.phi);
+  update_properties(s);
+  // A one-phase run assembles the pressure matrix only at the first step (rho is constant);
+  // the viscous matrix is reassembled at the next step since assembled_a0dt_ is unset.
+  if (projector_) projector_->assemble(s.rho);
+  assembled_a0dt_ = -1;
+}
+
 StepStats Stepper::step(State& s, double dt) {
   StepStats st;
   const bool first = (s.step == 0);
