@@ -374,7 +374,11 @@ RunSummary Simulation::run() {
   };
 
   if (!restarted_) {
-    stepper_.initialize(s_);
+    try {
+      stepper_.initialize(s_);
+    } catch (const RunError& e) {
+      fail(std::string(e.what()) + " (in the initial pressure of the fluid at rest, t = 0)");
+    }
     // A prescribed flow that returns the interface to its start (one turn, a reversed vortex)
     // has the initial level set as exact answer: keep it for the interface error at the end.
     if (prescribed) GF_PETSC(VecCopy(s_.phi, phi0_));
