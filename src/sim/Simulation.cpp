@@ -65,9 +65,11 @@ std::string hex(double v) {
 
 // The prognostic fields, in checkpoint order (their names are checked on loading).
 std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, bool prescribed) {
-  std::vector<io::CheckpointField> f = {{"phi", s.phi},     {"velocity", s.vel},
-                                        {"velocity_old", s.vel_old}, {"p", s.p},
-                                        {"S", s.S},         {"s_wall", s.s_wall}};
+  // rho and eta are derived from phi (and, with mu(I), from u and p) but are kept as the last
+  // step left them, so that a restart needs no recomputation that could differ.
+  std::vector<io::CheckpointField> f = {
+      {"phi", s.phi}, {"velocity", s.vel}, {"velocity_old", s.vel_old}, {"p", s.p},
+      {"S", s.S},     {"s_wall", s.s_wall}, {"rho", s.rho},             {"eta", s.eta}};
   if (prescribed) f.push_back({"phi0", phi0});
   return f;
 }
@@ -96,6 +98,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.next_vtk", lp_.next_vtk);
   h.set("loop.vol0", lp_.vol0);
   h.set("loop.max_div", lp_.max_div);
+  h.set("loop.volume_change_pct", lp_.volume_change_pct);
   h.set("loop.wall_s", lp_.wall_s + (wall_now() - seg_t0_));
   h.set("loop.fp_capped_steps", lp_.fp_capped_steps);
   h.set("loop.volume_warn_rows", lp_.volume_warn_rows);
@@ -162,6 +165,7 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   lp_.next_vtk = h.get_double("loop.next_vtk");
   lp_.vol0 = h.get_double("loop.vol0");
   lp_.max_div = h.get_double("loop.max_div");
+  lp_.volume_change_pct = h.get_double("loop.volume_change_pct");
   lp_.wall_s = h.get_double("loop.wall_s");
   lp_.fp_capped_steps = h.get_int("loop.fp_capped_steps");
   lp_.volume_warn_rows = h.get_int("loop.volume_warn_rows");
@@ -285,7 +289,7 @@ RunSummary Simulation::run() {
     }
     if (probes.samples("kappa")) extra.emplace_back("kappa", stepper_.kappa());
     probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta, extra);
-    sum.volume_change_pct = vchange;
+    lp_.volume_change_pct = vchange;
     // Mass conservation is not exact with a level set: a drift beyond the threshold is a
     // warning (counted in summary.json), said once.
     if (cfg.levelset && std::abs(vchange) > rc_.volume_warn_pct) {
@@ -313,6 +317,7 @@ RunSummary Simulation::run() {
     sum.t_end = s_.t;
     sum.wall_s = lp_.wall_s + (wall_now() - seg_t0_);
     sum.max_divergence = lp_.max_div;
+    sum.volume_change_pct = lp_.volume_change_pct;
     io::JsonObject js;
     js.set("title", rc_.title)
         .set("status", status)

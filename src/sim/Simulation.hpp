@@ -84,6 +84,7 @@ class Simulation {
     double next_out = 0, next_vtk = 0;  // s, next diagnostics / VTK time
     double vol0 = 0;                 // m^2/m, granular volume at t = 0
     double max_div = 0;              // 1/s, largest divergence in a diagnostics row
+    double volume_change_pct = 0;    // %, of the last diagnostics row
     double wall_s = 0;               // s of wall clock of the runs before this one
     long long fp_capped_steps = 0;   // steps whose fixed point stopped at its cap (a warning)
     long long volume_warn_rows = 0;  // diagnostics rows with |volume change| > volume_warn_pct

@@ -232,9 +232,13 @@ void Stepper::initialize(State& s) {
 
 void Stepper::resume(State& s) {
   if (predictor_) predictor_->set_phase(s.phi);
-  update_properties(s);
-  // A one-phase run assembles the pressure matrix only at the first step (rho is constant);
-  // the viscous matrix is reassembled at the next step since assembled_a0dt_ is unset.
+  // rho and eta come from the checkpoint as the last step left them (for a prescribed flow,
+  // those of the initial phi; with mu(I), those of that step's start): recomputing them here
+  // would change the diagnostics of a restart that takes no step. What else the stepper keeps
+  // between steps is rebuilt: the nodal viscosity of a one-phase run (constant; mu(I) rewrites
+  // the interior nodes every step), the pressure matrix (assembled only at the first step of
+  // a one-phase run), and the viscous matrix at the next step since assembled_a0dt_ is unset.
+  if (!cfg_.levelset) GF_PETSC(VecSet(eta_node_, cfg_.eta_gran));
   if (projector_) projector_->assemble(s.rho);
   assembled_a0dt_ = -1;
 }

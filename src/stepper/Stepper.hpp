@@ -63,9 +63,9 @@ class Stepper {
 
   // Properties at t = 0 and the initial (hydrostatic-like) pressure of the fluid at rest.
   void initialize(State& s);
-  // Instead of initialize() when s was loaded from a checkpoint: rebuilds what the stepper
-  // keeps between steps from s alone (phase, properties, the pressure matrix), without
-  // touching the prognostic fields. Everything else the stepper holds is rebuilt inside each
+  // Instead of initialize() when s was loaded from a checkpoint (rho and eta included):
+  // rebuilds what the stepper keeps between steps from s alone (phase, nodal viscosity, the
+  // pressure matrix), without touching s. Everything else the stepper holds is rebuilt inside each
   // step (kappa, kappa_b, the viscous matrix, the Anderson history), so the next step is
   // bit-for-bit the step the uninterrupted run takes.
   void resume(State& s);
