@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <fstream>
 #include <initializer_list>
+#include <map>
 #include <ostream>
 #include <sstream>
 
@@ -124,7 +125,12 @@ Params case_params() {
              "An adaptive step below this stops the run as failed (a collapsing dt means "
              "the flow is blowing up).");
   p.add_int("time.max_steps", "steps", 0, Range::ge(0),
-            "Stop after this many steps; 0 = unlimited.");
+            "Stop after this many steps (of this run: a restart counts from the checkpoint); "
+            "0 = unlimited.");
+  p.add_real("time.max_speed", "m/s", 100.0, Range::gt(0),
+             "A speed above this anywhere stops the run as blown up (exit code 4), before "
+             "it turns into NaN: no flow of this solver (granular collapses, dam breaks: a "
+             "few m/s) comes near it.");
 
   p.add_real2("physics.gravity", "m/s^2", {0.0, -9.81}, Range::any(), "Gravity (gx, gy).");
 
@@ -260,6 +266,17 @@ Params case_params() {
              "Simulated time between VTK snapshots; 0 = no VTK.");
   p.add_real("output.progress_interval", "s", 2.0, Range::ge(0),
              "Wall-clock time between progress lines; 0 = none.");
+  p.add_int("output.checkpoint_interval_steps", "steps", 0, Range::ge(0),
+            "Write a checkpoint (OUT/checkpoint, for `granflow run --restart OUT`) every this "
+            "many steps; 0 = none. A checkpoint is also written at the end of the run and on "
+            "SIGINT/SIGTERM.");
+  p.add_real("output.checkpoint_wall_s", "s", 600.0, Range::ge(0),
+             "Write a checkpoint every this much wall-clock time, so that a run killed hard "
+             "(SIGKILL, a node failure) loses at most this much work; 0 = none.");
+  p.add_real("output.volume_warn_pct", "%", 1.0, Range::gt(0),
+             "A change of the granular volume (diagnostics.csv volume_change_pct) beyond this "
+             "is a warning: printed once, and the rows counted in summary.json "
+             "(warnings_volume_drift_rows).");
 
   p.add_real("solver.pressure_rtol", "", 1e-10, Range::open(0, 1),
              "Relative residual tolerance of the pressure solve (eq. 32).");
@@ -338,6 +355,7 @@ CaseConfig fill(const Params& p) {
   c.time.dt_max = p.get_real("time.dt_max");
   c.time.dt_min = p.get_real("time.dt_min");
   c.time.max_steps = p.get_int("time.max_steps");
+  c.time.max_speed = p.get_real("time.max_speed");
 
   c.gravity = p.get_real2("physics.gravity");
   c.granular = {p.get_real("phase.granular.rho"), p.get_real("phase.granular.eta")};
@@ -399,6 +417,9 @@ CaseConfig fill(const Params& p) {
   c.output.interval = p.get_real("output.interval");
   c.output.vtk_interval = p.get_real("output.vtk_interval");
   c.output.progress_interval = p.get_real("output.progress_interval");
+  c.output.checkpoint_interval_steps = p.get_int("output.checkpoint_interval_steps");
+  c.output.checkpoint_wall_s = p.get_real("output.checkpoint_wall_s");
+  c.output.volume_warn_pct = p.get_real("output.volume_warn_pct");
 
   c.solver.pressure_rtol = p.get_real("solver.pressure_rtol");
   c.solver.viscous_rtol = p.get_real("solver.viscous_rtol");
@@ -850,6 +871,75 @@ CaseConfig load_case_string(const std::string& text, const std::string& source,
   CaseConfig c = resolve(p, errors);
   errors.throw_if_any();
   return c;
+}
+
+const std::vector<std::string>& restart_changeable_keys() {
+  static const std::vector<std::string> keys{
+      "time.t_end",          "time.max_steps", "time.dt_mode",
+      "time.dt",             "time.cfl",       "time.dt_max",
+      "time.dt_min",         "time.max_speed", "output.progress_interval",
+      "output.checkpoint_interval_steps",      "output.checkpoint_wall_s",
+      "output.volume_warn_pct",                "solver.petsc_options"};
+  return keys;
+}
+
+namespace {
+// key -> value text of a resolved case: "section.key" for [section] tables, "probe[k].key"
+// for the k-th [[probe]]; comments and blank lines skipped.
+std::vector<std::pair<std::string, std::string>> resolved_entries(const std::string& toml) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::istringstream in(toml);
+  std::string line, section;
+  std::map<std::string, int> array_count;
+  const auto trim = [](std::string x) {
+    const auto a = x.find_first_not_of(" \t"), b = x.find_last_not_of(" \t\r");
+    return a == std::string::npos ? std::string() : x.substr(a, b - a + 1);
+  };
+  while (std::getline(in, line)) {
+    line = trim(line);
+    if (line.empty() || line[0] == '#') continue;
+    if (line.rfind("[[", 0) == 0) {
+      const std::string name = trim(line.substr(2, line.find("]]") - 2));
+      section = name + "[" + std::to_string(++array_count[name]) + "]";
+      continue;
+    }
+    if (line[0] == '[') {
+      section = trim(line.substr(1, line.find(']') - 1));
+      continue;
+    }
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string key = trim(line.substr(0, eq));
+    out.emplace_back(section.empty() ? key : section + "." + key, trim(line.substr(eq + 1)));
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<std::string> case_differences(const std::string& checkpoint_toml,
+                                          const std::string& now_toml,
+                                          const std::vector<std::string>& ignore) {
+  const auto a = resolved_entries(checkpoint_toml), b = resolved_entries(now_toml);
+  const auto skip = [&](const std::string& k) {
+    return std::find(ignore.begin(), ignore.end(), k) != ignore.end();
+  };
+  const auto value = [](const auto& list, const std::string& k) -> const std::string* {
+    for (const auto& [key, v] : list)
+      if (key == k) return &v;
+    return nullptr;
+  };
+  std::vector<std::string> diffs;
+  for (const auto& [k, v] : a) {
+    if (skip(k)) continue;
+    const std::string* w = value(b, k);
+    if (!w)
+      diffs.push_back(k + ": " + v + " at the checkpoint, absent now");
+    else if (*w != v)
+      diffs.push_back(k + ": " + v + " at the checkpoint, " + *w + " now");
+  }
+  for (const auto& [k, v] : b)
+    if (!skip(k) && !value(a, k)) diffs.push_back(k + ": absent at the checkpoint, " + v + " now");
+  return diffs;
 }
 
 std::string write_resolved_case(const CaseConfig& c, const std::string& path) {

@@ -48,6 +48,7 @@ struct CaseConfig {
     double cfl = 0;                 // -
     double dt_max = 0, dt_min = 0;  // s; below dt_min the run stops as failed
     long long max_steps = 0;        // 0 = unlimited
+    double max_speed = 0;           // m/s; above it the run stops as blown up
     bool operator==(const Time&) const = default;
   };
   struct Phase {
@@ -114,6 +115,9 @@ struct CaseConfig {
     double interval = 0;           // s (simulated), diagnostics and probes
     double vtk_interval = 0;       // s (simulated), 0 = no VTK
     double progress_interval = 0;  // s (wall clock), 0 = no progress lines
+    long long checkpoint_interval_steps = 0;  // steps, 0 = none
+    double checkpoint_wall_s = 0;             // s (wall clock), 0 = none
+    double volume_warn_pct = 0;               // %, granular volume drift counted as a warning
     bool operator==(const Output&) const = default;
   };
   struct Solver {
@@ -180,6 +184,18 @@ double velocity_scale(const CaseConfig& c);
 // The first time step, s: time.dt if > 0, else min(cfl min(hx, hy) / U, dt_max) (dt_max if
 // U = 0).
 double initial_dt(const CaseConfig& c);
+
+// Restarts (`granflow run --restart DIR`). The keys a restart may change, by --set or by
+// editing DIR/case.toml: the end time and the time-step controls (extend a run, retry a
+// blown-up run with a smaller step), the checkpoint and progress schedule, the warning
+// thresholds and the PETSc options. Every other key changes the physics, the grid or the
+// output schedule that the files already written follow: a restart refuses it.
+const std::vector<std::string>& restart_changeable_keys();
+// The differences between two resolved cases (CaseConfig::resolved_toml), one line each
+// ("grid.n: 16 at the checkpoint, 24 now"), skipping the keys in `ignore`. Empty: same case.
+std::vector<std::string> case_differences(const std::string& checkpoint_toml,
+                                          const std::string& now_toml,
+                                          const std::vector<std::string>& ignore);
 
 // Writes c.resolved_toml to `path`. Returns an error message, empty on success.
 [[nodiscard]] std::string write_resolved_case(const CaseConfig& c, const std::string& path);

@@ -11,7 +11,8 @@ enum ExitCode : int {
   kExitUsage = 2,        // bad command line
   kExitInput = 3,        // bad case file (unknown key, wrong type, out of range, geometry)
   kExitRunFailure = 4,   // NaN, dt collapse, solver divergence during a run
-  kExitIo = 5,           // cannot read or write a file
+  kExitIo = 5,           // cannot read or write a file (also a corrupt checkpoint)
+  kExitInterrupted = 6,  // stopped by SIGINT/SIGTERM after writing a checkpoint: restartable
   kExitInternal = 70,
 };
 
@@ -23,6 +24,13 @@ class InputError : public std::runtime_error {
 
 // A run that went wrong (NaN, CFL blow-up, solver divergence).
 class RunError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A run stopped on request (SIGINT/SIGTERM) after it wrote its checkpoint and diagnostics:
+// not a failure, but the results are incomplete, so the exit code (kExitInterrupted) differs.
+class Interrupted : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

@@ -129,4 +129,57 @@ std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec phi, do
   return {tot[0] / tot[2], tot[1] / tot[2]};
 }
 
+namespace {
+// The lowest linear index j nx + i over the ranks of a local candidate (-1: none here).
+CellIndex lowest_cell(const Grid& g, long long local) {
+  const long long none = std::numeric_limits<long long>::max();
+  long long in = local < 0 ? none : local, out = none;
+  MPI_Allreduce(&in, &out, 1, MPI_LONG_LONG, MPI_MIN, g.comm());
+  if (out == none) return {};
+  return {static_cast<PetscInt>(out % g.nx()), static_cast<PetscInt>(out / g.nx())};
+}
+}  // namespace
+
+CellIndex first_nonfinite(const Grid& g, Vec field) {
+  const Box& b = g.box();
+  PetscInt n = 0;
+  GF_PETSC(VecGetLocalSize(field, &n));
+  const PetscInt cells = b.xm * b.ym;
+  const PetscInt dof = cells > 0 ? n / cells : 1;
+  const PetscScalar* a;
+  GF_PETSC(VecGetArrayRead(field, &a));
+  long long first = -1;
+  // Owned values are stored i-fastest from (xs, ys), dof per cell: the first bad value in
+  // storage order is the first bad cell in (j, i) order.
+  for (PetscInt k = 0; k < n; ++k)
+    if (!std::isfinite(a[k])) {
+      const PetscInt c = k / dof;
+      first = static_cast<long long>(b.ys + c / b.xm) * b.nx + (b.xs + c % b.xm);
+      break;
+    }
+  GF_PETSC(VecRestoreArrayRead(field, &a));
+  return lowest_cell(g, first);
+}
+
+SpeedAt max_speed_at(const Grid& g, Vec vel) {
+  SpeedAt r;
+  r.speed = max_speed(g, vel);
+  const Box& b = g.box();
+  LocalVelocity v(g, vel);
+  long long at = -1;
+  for (PetscInt j = b.ys; j < b.ye() && at < 0; ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      double uc, vc;
+      cell_centre_velocity(v, i, j, uc, vc);
+      const double s = std::sqrt(uc * uc + vc * vc);
+      // The same expression as in max_speed, so the comparison is exact (NaN: none matches).
+      if (s == r.speed) {
+        at = static_cast<long long>(j) * b.nx + i;
+        break;
+      }
+    }
+  r.at = lowest_cell(g, at);
+  return r;
+}
+
 }  // namespace gf::diag

@@ -53,4 +53,21 @@ double max_in_granular(const Grid& g, Vec field, Vec phi);
 // {0, 0} if there is no granular cell.
 std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec phi, double eps);
 
+// A cell of the grid, for failure messages ("where"); i < 0 means none.
+struct CellIndex {
+  PetscInt i = -1, j = -1;
+  bool found() const { return i >= 0; }
+};
+
+// The first cell (lowest j, then lowest i) where `field`, a global Vec of a grid DM (any dof),
+// holds a NaN or an infinity in any component; none if the field is finite. Collective.
+CellIndex first_nonfinite(const Grid& g, Vec field);
+
+// max_speed and the cell where it is reached (the first such cell, as above).
+struct SpeedAt {
+  double speed = 0;  // m/s
+  CellIndex at;
+};
+SpeedAt max_speed_at(const Grid& g, Vec vel);
+
 }  // namespace gf::diag

@@ -26,6 +26,12 @@ class CsvWriter {
   // and free of commas, quotes and line breaks (they are written unquoted).
   CsvWriter(std::string path, std::vector<std::string> columns,
             MPI_Comm comm = PETSC_COMM_WORLD);
+  // Collective. Continues an existing file (a restart): rank 0 checks that its header line is
+  // `columns`, cuts it back to `resume_bytes` (its size at the checkpoint, so rows written
+  // after the checkpoint are not duplicated) and appends from there. IoError on every rank if
+  // the file is missing, has another header or is shorter than `resume_bytes`.
+  CsvWriter(std::string path, std::vector<std::string> columns, long long resume_bytes,
+            MPI_Comm comm = PETSC_COMM_WORLD);
   CsvWriter(CsvWriter&&) noexcept = default;
   CsvWriter& operator=(CsvWriter&&) noexcept = default;
 
@@ -35,6 +41,8 @@ class CsvWriter {
 
   const std::string& path() const { return path_; }
   std::size_t columns() const { return ncol_; }
+  // Bytes in the file so far (header included), on rank 0; 0 on the other ranks.
+  long long bytes() const { return bytes_; }
 
  private:
   struct Closer {
@@ -42,6 +50,7 @@ class CsvWriter {
   };
   std::string path_;
   std::size_t ncol_ = 0;
+  long long bytes_ = 0;
   std::unique_ptr<std::FILE, Closer> file_;  // null on ranks other than 0
 };
 

@@ -68,8 +68,11 @@ double inside(double x, double L, const std::string& what) {
 std::vector<std::string> default_extra_cell_fields() { return {"D_norm", "S_norm", "kappa"}; }
 
 ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> specs,
-                         std::vector<std::string> extra_cell_fields)
+                         std::vector<std::string> extra_cell_fields,
+                         const std::vector<long long>& resume_bytes)
     : g_(g), extra_(std::move(extra_cell_fields)) {
+  if (!resume_bytes.empty() && resume_bytes.size() != specs.size())
+    throw std::invalid_argument("ProbeWriter: resume_bytes must have one entry per probe");
   const Box& b = g.box();
   {
     std::set<std::string> ex;
@@ -125,11 +128,23 @@ ProbeWriter::ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> 
   // u and v are needed for speed; rho/phi/p/eta only if asked for.
   if (needs_[kSpeed]) needs_[kU] = needs_[kV] = 1;
 
-  for (const Probe& p : probes_) {
+  for (std::size_t n = 0; n < probes_.size(); ++n) {
+    const Probe& p = probes_[n];
     std::vector<std::string> cols = {"t", "x", "y"};
     cols.insert(cols.end(), p.spec.fields.begin(), p.spec.fields.end());
-    csv_.emplace_back(dir + "/probes/" + p.spec.name + ".csv", std::move(cols), g.comm());
+    const std::string path = dir + "/probes/" + p.spec.name + ".csv";
+    if (resume_bytes.empty())
+      csv_.emplace_back(path, std::move(cols), g.comm());
+    else
+      csv_.emplace_back(path, std::move(cols), resume_bytes[n], g.comm());
   }
+}
+
+std::vector<std::pair<std::string, long long>> ProbeWriter::file_bytes() const {
+  std::vector<std::pair<std::string, long long>> out;
+  for (std::size_t n = 0; n < probes_.size(); ++n)
+    out.emplace_back(probes_[n].spec.name, csv_[n].bytes());
+  return out;
 }
 
 bool ProbeWriter::samples(const std::string& field) const {

@@ -57,8 +57,11 @@ class ProbeWriter {
   // dir/probes and one CSV per probe with its header. `extra_cell_fields`: the names of the
   // extra cell fields the specs may ask for (distinct, none a built-in name; a bad list is a
   // programming error: std::invalid_argument).
+  // `resume_bytes`: empty for a new run; on a restart, the size of each probe's file at the
+  // checkpoint (same order as `specs`): the files are continued from there (CsvWriter).
   ProbeWriter(const Grid& g, std::string dir, std::vector<ProbeSpec> specs,
-              std::vector<std::string> extra_cell_fields = default_extra_cell_fields());
+              std::vector<std::string> extra_cell_fields = default_extra_cell_fields(),
+              const std::vector<long long>& resume_bytes = {});
 
   // Collective. Appends one block per probe at time t. A Vec may be nullptr only if no probe
   // asks for it (std::invalid_argument otherwise): phi, rho, p, eta on dm_cell, vel on dm_vel.
@@ -71,6 +74,10 @@ class ProbeWriter {
   // Whether some probe samples `field` (built-in or extra): lets the caller skip computing a
   // field no probe needs (the answer is the same on every rank).
   bool samples(const std::string& field) const;
+
+  // Per probe (in the order of the specs): its name and the bytes in its file so far (rank 0;
+  // 0 elsewhere), for a checkpoint.
+  std::vector<std::pair<std::string, long long>> file_bytes() const;
 
  private:
   // Built-in quantities; extra cell field e is quantity kCount + e.

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 
@@ -158,7 +159,7 @@ void VtkSeries::write(double t, const std::vector<CellField>& fields) {
   const bool root = g_.rank() == 0;
   const std::uint64_t ncell = static_cast<std::uint64_t>(b.nx) * b.ny;
   char num[16];
-  std::snprintf(num, sizeof num, "_%06d", files_written());
+  std::snprintf(num, sizeof num, "_%06d", next_number_);
   const std::string fname = base_ + num + ".vtr";
   const std::string path = (dir_.empty() ? "" : dir_ + "/") + fname;
 
@@ -266,17 +267,59 @@ void VtkSeries::write(double t, const std::vector<CellField>& fields) {
   // whose .vtr failed was reported above and is not listed.
   raise_on_all_ranks(g_.comm(), err);
   entries_.emplace_back(t, fname);
+  ++next_number_;
+  if (root) err = write_pvd();
+  raise_on_all_ranks(g_.comm(), err);
+}
+
+std::string VtkSeries::write_pvd() const {
+  std::string pvd = "<?xml version=\"1.0\"?>\n";
+  pvd += std::string("<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"") +
+         kByteOrder + "\">\n  <Collection>\n";
+  for (const auto& [te, fe] : entries_)
+    pvd += "    <DataSet timestep=\"" + format_number(te) + "\" group=\"\" part=\"0\" file=\"" +
+           xml_escape(fe) + "\"/>\n";
+  pvd += "  </Collection>\n</VTKFile>\n";
+  return write_file_atomic(pvd_path(), pvd);
+}
+
+int VtkSeries::resume(const std::vector<std::pair<double, std::string>>& entries) {
+  namespace fs = std::filesystem;
+  const bool root = g_.rank() == 0;
+  const std::string dir = dir_.empty() ? "." : dir_;
+  int missing = 0;
+  entries_.clear();
+  for (const auto& e : entries) {
+    if (root && !fs::exists(dir + "/" + e.second)) {
+      ++missing;
+      continue;
+    }
+    entries_.push_back(e);
+  }
+  MPI_Bcast(&missing, 1, MPI_INT, 0, g_.comm());
+  // Numbering continues after the checkpoint's last file (not after the kept count, so that
+  // a missing file does not make the next one reuse a listed name).
+  next_number_ = static_cast<int>(entries.size());
+  std::string err;
   if (root) {
-    std::string pvd = "<?xml version=\"1.0\"?>\n";
-    pvd += std::string("<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"") +
-           kByteOrder + "\">\n  <Collection>\n";
-    for (const auto& [te, fe] : entries_)
-      pvd += "    <DataSet timestep=\"" + format_number(te) + "\" group=\"\" part=\"0\" file=\"" +
-             xml_escape(fe) + "\"/>\n";
-    pvd += "  </Collection>\n</VTKFile>\n";
-    err = write_file_atomic(pvd_path(), pvd);
+    std::error_code ec;
+    const std::string prefix = base_ + "_";
+    for (const auto& de : fs::directory_iterator(dir, ec)) {
+      const std::string name = de.path().filename().string();
+      if (name.size() != prefix.size() + 10 || name.compare(0, prefix.size(), prefix) != 0 ||
+          name.compare(name.size() - 4, 4, ".vtr") != 0)
+        continue;
+      const std::string digits = name.substr(prefix.size(), 6);
+      if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
+      if (std::stoi(digits) >= next_number_) fs::remove(de.path(), ec);
+    }
+    err = write_pvd();
   }
   raise_on_all_ranks(g_.comm(), err);
+  // Only rank 0 looked at the files, and only rank 0 writes the .pvd: the other ranks keep
+  // the list as given.
+  if (!root) entries_ = entries;
+  return missing;
 }
 
 }  // namespace gf::io

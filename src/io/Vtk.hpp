@@ -60,6 +60,14 @@ class VtkSeries {
   // (std::invalid_argument on every rank otherwise).
   void write(double t, const std::vector<CellField>& fields);
 
+  // Collective. Continues a series after a restart: `entries` are the (t, file name) pairs
+  // listed at the checkpoint. Rank 0 deletes the snapshots of this series written after the
+  // checkpoint (numbers >= entries.size(): they would be listed twice or out of order) and
+  // rewrites the .pvd; the next write() gets number entries.size(). A listed file that is
+  // missing is dropped from the list; returns how many were (same on every rank).
+  int resume(const std::vector<std::pair<double, std::string>>& entries);
+  const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
+
   std::string pvd_path() const;
   int files_written() const { return static_cast<int>(entries_.size()); }
   // Path of the .vtr file written by the last write() ("" before the first).
@@ -76,11 +84,14 @@ class VtkSeries {
     Vec on_zero = nullptr;
   };
   Gather& gather_for(int components);
+  // Rank 0: rewrites the .pvd from entries_ atomically; returns an error message.
+  std::string write_pvd() const;
 
   const Grid& g_;
   std::string dir_, base_;
   std::map<int, Gather> gathers_;
   std::vector<std::pair<double, std::string>> entries_;  // (t, file name relative to dir_)
+  int next_number_ = 0;                                  // of the next file written
 };
 
 }  // namespace gf::io

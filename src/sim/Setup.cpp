@@ -74,6 +74,10 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
   r.dt_max = c.time.dt_max;
   r.dt_min = c.time.dt_min;
   r.max_steps = c.time.max_steps;
+  r.max_speed = c.time.max_speed;
+  r.checkpoint_interval_steps = c.output.checkpoint_interval_steps;
+  r.checkpoint_wall_s = c.output.checkpoint_wall_s;
+  r.volume_warn_pct = c.output.volume_warn_pct;
   r.output_interval = c.output.interval;
   r.vtk_interval = c.output.vtk_interval;
   r.progress_interval = c.output.progress_interval;

@@ -4,11 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 #include "core/Error.hpp"
+#include "core/Log.hpp"
+#include "core/Signal.hpp"
 #include "diagnostics/Diagnostics.hpp"
 #include "io/Csv.hpp"
+#include "io/IoError.hpp"
 #include "io/Json.hpp"
 #include "io/Vtk.hpp"
 #include "levelset/LevelSet.hpp"
@@ -16,7 +20,7 @@
 namespace gf {
 
 Simulation::Simulation(const Grid& g, State& s, Stepper& stepper, const RunConfig& rc)
-    : g_(g), s_(s), stepper_(stepper), rc_(rc) {}
+    : g_(g), s_(s), stepper_(stepper), rc_(rc), phi0_(g.dm_cell(), "phi0") {}
 
 double Simulation::choose_dt(double umax, double dt_prev) const {
   double dt;
@@ -41,11 +45,179 @@ double Simulation::choose_dt(double umax, double dt_prev) const {
 }
 
 namespace {
+
 double wall_now() {
   using namespace std::chrono;
   return duration<double>(steady_clock::now().time_since_epoch()).count();
 }
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+std::string hex(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%a", v);
+  return b;
+}
+
+// The prognostic fields, in checkpoint order (their names are checked on loading).
+std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, bool prescribed) {
+  // rho and eta are derived from phi (and, with mu(I), from u and p) but are kept as the last
+  // step left them, so that a restart needs no recomputation that could differ.
+  std::vector<io::CheckpointField> f = {
+      {"phi", s.phi}, {"velocity", s.vel}, {"velocity_old", s.vel_old}, {"p", s.p},
+      {"S", s.S},     {"s_wall", s.s_wall}, {"rho", s.rho},             {"eta", s.eta}};
+  if (prescribed) f.push_back({"phi0", phi0});
+  return f;
+}
+
 }  // namespace
+
+// ------------------------------------------------------------------------------ checkpoints
+
+void Simulation::save_checkpoint(const std::string& reason) {
+  io::CheckpointHeader h;
+  const Box& b = g_.box();
+  h.set_text("version", GRANFLOW_GIT_HASH);
+  h.set_text("reason", reason);
+  h.set("ranks", static_cast<long long>(g_.size()));
+  h.set("grid.nx", static_cast<long long>(b.nx));
+  h.set("grid.ny", static_cast<long long>(b.ny));
+  h.set("grid.periodic_x", static_cast<long long>(b.periodic_x));
+  h.set("domain.Lx", b.Lx);
+  h.set("domain.Ly", b.Ly);
+  h.set("t", s_.t);
+  h.set("dt", s_.dt);
+  h.set("dt_old", s_.dt_old);
+  h.set("step", s_.step);
+  h.set("loop.dt_prev", lp_.dt_prev);
+  h.set("loop.next_out", lp_.next_out);
+  h.set("loop.next_vtk", lp_.next_vtk);
+  h.set("loop.vol0", lp_.vol0);
+  h.set("loop.max_div", lp_.max_div);
+  h.set("loop.volume_change_pct", lp_.volume_change_pct);
+  h.set("loop.wall_s", lp_.wall_s + (wall_now() - seg_t0_));
+  h.set("loop.fp_capped_steps", lp_.fp_capped_steps);
+  h.set("loop.volume_warn_rows", lp_.volume_warn_rows);
+  h.set("loop.mu_floor_max", lp_.mu_floor_max);
+  h.set("loop.mu_cap_max", lp_.mu_cap_max);
+  h.set("loop.restarts", lp_.restarts);
+  h.set("loop.max_fp_iters", lp_.max_fp_iters);
+  const StepStats& l = lp_.last;
+  h.set("last.visc_its", l.visc_its);
+  h.set("last.pres_its", l.pres_its);
+  h.set("last.fp_iters", l.fp_iters);
+  h.set("last.fp_change", l.fp_change);
+  h.set("last.fp_capped", static_cast<long long>(l.fp_capped));
+  h.set("last.mu_i_floor_cells", l.mu_i_floor_cells);
+  h.set("last.mu_i_cap_cells", l.mu_i_cap_cells);
+  h.set("last.redistanced", static_cast<long long>(l.redistanced));
+  // Where the output files stood (rank 0 knows; rank 0 writes the header).
+  h.set("files.diagnostics", csv_ ? csv_->bytes() : 0);
+  const auto pb = probes_ ? probes_->file_bytes() : decltype(probes_->file_bytes()){};
+  h.set("files.probes", static_cast<long long>(pb.size()));
+  for (std::size_t k = 0; k < pb.size(); ++k)
+    h.set_text("files.probe." + std::to_string(k), std::to_string(pb[k].second) + " " + pb[k].first);
+  const auto& ve = vtk_ ? vtk_->entries() : vtk_entries_;
+  h.set("vtk.count", static_cast<long long>(ve.size()));
+  for (std::size_t k = 0; k < ve.size(); ++k)
+    h.set_text("vtk." + std::to_string(k), hex(ve[k].first) + " " + ve[k].second);
+  const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
+  io::write_checkpoint(g_.comm(), rc_.out_dir, std::move(h),
+                       checkpoint_fields(s_, phi0_, prescribed), ckpt_files_);
+  last_ckpt_step_ = s_.step;
+  last_ckpt_t_ = s_.t;
+  if (g_.rank() == 0)
+    log::to_file("granflow: checkpoint (" + reason + ") at t = " + num(s_.t) + " s, step " +
+                 std::to_string(s_.step) + " in " + rc_.out_dir + "/checkpoint");
+}
+
+void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader& h) {
+  const Box& b = g_.box();
+  const std::string src = h.source();
+  // The grid first: a checkpoint of another grid cannot be loaded at all.
+  const long long nx = h.get_int("grid.nx"), ny = h.get_int("grid.ny");
+  const bool periodic = h.get_int("grid.periodic_x") != 0;
+  const double Lx = h.get_double("domain.Lx"), Ly = h.get_double("domain.Ly");
+  if (nx != b.nx || ny != b.ny)
+    throw InputError(src + ": the checkpoint is for a " + std::to_string(nx) + " x " +
+                     std::to_string(ny) + " grid, the case has " + std::to_string(b.nx) +
+                     " x " + std::to_string(b.ny) +
+                     " (grid.n / grid.nx differ): a restart continues on the same grid");
+  if (Lx != b.Lx || Ly != b.Ly || periodic != b.periodic_x)
+    throw InputError(src + ": the checkpoint is for a " + num(Lx) + " m x " + num(Ly) +
+                     " m domain" + (periodic ? " (periodic in x)" : "") + ", the case has " +
+                     num(b.Lx) + " m x " + num(b.Ly) + " m" + (b.periodic_x ? " (periodic in x)" : ""));
+  const double t = h.get_double("t");
+  if (rc_.t_end < t)
+    throw InputError("time.t_end = " + num(rc_.t_end) + " s is before the checkpoint time t = " +
+                     num(t) + " s (" + src + "): a restart continues forward; set time.t_end >= " +
+                     num(t) + " s");
+  s_.t = t;
+  s_.dt = h.get_double("dt");
+  s_.dt_old = h.get_double("dt_old");
+  s_.step = h.get_int("step");
+  lp_.dt_prev = h.get_double("loop.dt_prev");
+  lp_.next_out = h.get_double("loop.next_out");
+  lp_.next_vtk = h.get_double("loop.next_vtk");
+  lp_.vol0 = h.get_double("loop.vol0");
+  lp_.max_div = h.get_double("loop.max_div");
+  lp_.volume_change_pct = h.get_double("loop.volume_change_pct");
+  lp_.wall_s = h.get_double("loop.wall_s");
+  lp_.fp_capped_steps = h.get_int("loop.fp_capped_steps");
+  lp_.volume_warn_rows = h.get_int("loop.volume_warn_rows");
+  lp_.mu_floor_max = h.get_int("loop.mu_floor_max");
+  lp_.mu_cap_max = h.get_int("loop.mu_cap_max");
+  lp_.restarts = h.get_int("loop.restarts") + 1;
+  lp_.max_fp_iters = static_cast<int>(h.get_int("loop.max_fp_iters"));
+  StepStats& l = lp_.last;
+  l.visc_its = static_cast<int>(h.get_int("last.visc_its"));
+  l.pres_its = static_cast<int>(h.get_int("last.pres_its"));
+  l.fp_iters = static_cast<int>(h.get_int("last.fp_iters"));
+  l.fp_change = h.get_double("last.fp_change");
+  l.fp_capped = h.get_int("last.fp_capped") != 0;
+  l.mu_i_floor_cells = h.get_int("last.mu_i_floor_cells");
+  l.mu_i_cap_cells = h.get_int("last.mu_i_cap_cells");
+  l.redistanced = h.get_int("last.redistanced") != 0;
+  diag_bytes_ = h.get_int("files.diagnostics");
+  // Probe files by name: the case comparison (apps/) has made sure the probes are the same.
+  const long long np = h.get_int("files.probes");
+  probe_bytes_.clear();
+  for (const auto& spec : rc_.probes) {
+    long long bytes = -1;
+    for (long long k = 0; k < np; ++k) {
+      const std::string v = h.get_text("files.probe." + std::to_string(k));
+      const auto sp = v.find(' ');
+      if (sp != std::string::npos && v.substr(sp + 1) == spec.name)
+        bytes = std::stoll(v.substr(0, sp));
+    }
+    if (bytes < 0)
+      throw InputError(src + ": the checkpoint has no record of probe '" + spec.name +
+                       "': the probes of the case changed since the checkpoint");
+    probe_bytes_.push_back(bytes);
+  }
+  vtk_entries_.clear();
+  const long long nv = h.get_int("vtk.count");
+  for (long long k = 0; k < nv; ++k) {
+    const std::string v = h.get_text("vtk." + std::to_string(k));
+    const auto sp = v.find(' ');
+    char* end = nullptr;
+    const double te = std::strtod(v.c_str(), &end);
+    if (sp == std::string::npos || end != v.c_str() + sp)
+      throw io::IoError(src + ": malformed entry vtk." + std::to_string(k) + " '" + v + "'");
+    vtk_entries_.emplace_back(te, v.substr(sp + 1));
+  }
+  const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
+  io::read_checkpoint_fields(g_.comm(), ckpt_dir, h, checkpoint_fields(s_, phi0_, prescribed));
+  restarted_ = true;
+  last_ckpt_step_ = s_.step;
+  last_ckpt_t_ = s_.t;
+}
+
+// ------------------------------------------------------------------------------ the loop
 
 RunSummary Simulation::run() {
   namespace fs = std::filesystem;
@@ -53,19 +225,39 @@ RunSummary Simulation::run() {
   if (root) fs::create_directories(rc_.out_dir);
   MPI_Barrier(g_.comm());
   const auto& cfg = stepper_.config();
+  seg_t0_ = wall_now();
 
-  io::CsvWriter csv(rc_.out_dir + "/diagnostics.csv",
-                    {"t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed",
-                     "granular_u", "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
-                     "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m",
-                     "bottom_slide_m", "left_normal_N", "left_friction_N", "bottom_normal_N",
-                     "bottom_friction_N"},
-                    g_.comm());
-  io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes);
+  const std::vector<std::string> columns = {
+      "t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed", "granular_u",
+      "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
+      "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m", "bottom_slide_m",
+      "left_normal_N", "left_friction_N", "bottom_normal_N", "bottom_friction_N"};
+  const std::string diag_path = rc_.out_dir + "/diagnostics.csv";
+  io::CsvWriter csv = restarted_ ? io::CsvWriter(diag_path, columns, diag_bytes_, g_.comm())
+                                 : io::CsvWriter(diag_path, columns, g_.comm());
+  io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes, io::default_extra_cell_fields(),
+                         restarted_ ? probe_bytes_ : std::vector<long long>{});
   Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
       yielded(g_.dm_cell(), "yielded");
   std::unique_ptr<io::VtkSeries> vtk;
-  if (rc_.vtk_interval > 0) vtk = std::make_unique<io::VtkSeries>(g_, rc_.out_dir, "fields");
+  if (rc_.vtk_interval > 0) {
+    vtk = std::make_unique<io::VtkSeries>(g_, rc_.out_dir, "fields");
+    if (restarted_) {
+      const int missing = vtk->resume(vtk_entries_);
+      if (missing && root)
+        log::message("granflow: warning: " + std::to_string(missing) +
+                     " VTK file(s) listed at the checkpoint are missing; fields.pvd no "
+                     "longer lists them");
+    }
+  }
+  // The writers, for save_checkpoint (they live until the end of this function).
+  struct Writers {
+    Simulation* sim;
+    ~Writers() { sim->csv_ = nullptr, sim->probes_ = nullptr, sim->vtk_ = nullptr; }
+  } writers{this};
+  csv_ = &csv;
+  probes_ = &probes;
+  vtk_ = vtk.get();
   // Cell-centred velocity (2 interleaved components, reusing the dm_vel layout) and |u|.
   Field ucell(g_.dm_vel(), "u_cell"), speed(g_.dm_cell(), "speed");
 
@@ -73,23 +265,18 @@ RunSummary Simulation::run() {
   auto volume = [&]() {
     return cfg.levelset ? diag::granular_volume(g_, s_.phi, eps) : g_.box().Lx * g_.box().Ly;
   };
-  const double vol0 = volume();
   RunSummary sum;
-  StepStats last;
-  double max_div_run = 0;
-  long long fp_capped_steps = 0;  // steps whose fixed point stopped at its cap (a warning)
-  int max_fp_iters = 0;
-  long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
 
   auto write_diag = [&]() {
     const double vol = volume();
-    const double vchange = vol0 > 0 ? 100.0 * (vol - vol0) / vol0 : 0.0;
+    const double vchange = lp_.vol0 > 0 ? 100.0 * (vol - lp_.vol0) / lp_.vol0 : 0.0;
     const double div = diag::max_divergence(g_, s_.vel);
-    max_div_run = std::max(max_div_run, div);
+    lp_.max_div = std::max(lp_.max_div, div);
     const auto gu = diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
     // Where the granular material sticks to / slides on the back wall and the bottom (eqs. 22-23).
     const auto wc = stepper_.wall_contact(s_);
     const auto &stick = wc.stick_m, &slide = wc.slide_m;
+    const StepStats& last = lp_.last;
     csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
              diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
@@ -103,7 +290,18 @@ RunSummary Simulation::run() {
     }
     if (probes.samples("kappa")) extra.emplace_back("kappa", stepper_.kappa());
     probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta, extra);
-    sum.volume_change_pct = vchange;
+    lp_.volume_change_pct = vchange;
+    // Mass conservation is not exact with a level set: a drift beyond the threshold is a
+    // warning (counted in summary.json), said once.
+    if (cfg.levelset && std::abs(vchange) > rc_.volume_warn_pct) {
+      if (lp_.volume_warn_rows == 0 && root)
+        log::message("granflow: warning: the granular volume has changed by " + num(vchange) +
+                     " % at t = " + num(s_.t) + " s (beyond output.volume_warn_pct = " +
+                     num(rc_.volume_warn_pct) +
+                     " %): the interface is under-resolved; try a larger grid.n or a smaller "
+                     "time.cfl (counted in summary.json)");
+      ++lp_.volume_warn_rows;
+    }
   };
   auto write_vtk = [&]() {
     if (!vtk) return;
@@ -114,99 +312,189 @@ RunSummary Simulation::run() {
                       {"D_norm", dnorm, 1}, {"S_norm", snorm, 1}, {"yielded", yielded, 1},
                       {"kappa", stepper_.kappa(), 1}});
   };
-
-  stepper_.initialize(s_);
-  // A prescribed flow that returns the interface to its start (one turn, a reversed vortex)
-  // has the initial level set as exact answer: keep it for the interface error at the end.
-  Field phi0(g_.dm_cell(), "phi0");
   const bool prescribed = cfg.prescribed != PrescribedFlow::None;
-  if (prescribed) GF_PETSC(VecCopy(s_.phi, phi0));
-  write_diag();
-  write_vtk();
-  double next_out = s_.t + rc_.output_interval;
-  double next_vtk = s_.t + rc_.vtk_interval;
-  const double t0 = wall_now();
-  double last_progress = t0;
+  auto write_summary = [&](const std::string& status, const std::string& message) {
+    sum.steps = s_.step;
+    sum.t_end = s_.t;
+    sum.wall_s = lp_.wall_s + (wall_now() - seg_t0_);
+    sum.max_divergence = lp_.max_div;
+    sum.volume_change_pct = lp_.volume_change_pct;
+    io::JsonObject js;
+    js.set("title", rc_.title)
+        .set("status", status)
+        .set("version", std::string(GRANFLOW_GIT_HASH))
+        .set("ranks", static_cast<long long>(g_.size()))
+        .set("nx", static_cast<long long>(g_.nx()))
+        .set("ny", static_cast<long long>(g_.ny()))
+        .set("cells", static_cast<long long>(g_.nx() * g_.ny()))
+        .set("steps", sum.steps)
+        .set("t_end", sum.t_end)
+        .set("wall_s", sum.wall_s)
+        .set("s_per_step", sum.steps > 0 ? sum.wall_s / sum.steps : 0.0)
+        .set("restarts", lp_.restarts)
+        .set("max_divergence", sum.max_divergence)
+        .set("volume_change_pct", sum.volume_change_pct)
+        .set("max_speed", diag::max_speed(g_, s_.vel))
+        .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho))
+        .set("max_fp_iters", static_cast<long long>(lp_.max_fp_iters))
+        .set("warnings_fp_capped_steps", lp_.fp_capped_steps)
+        .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
+        .set("mu_i_floor_cells_max", lp_.mu_floor_max)
+        .set("mu_i_cap_cells_max", lp_.mu_cap_max);
+    if (last_ckpt_step_ >= 0)
+      js.set("checkpoint_t", last_ckpt_t_).set("checkpoint_step", last_ckpt_step_);
+    if (!message.empty()) js.set("message", message);
+    if (prescribed && cfg.levelset) {
+      // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
+      const double a0 = levelset::granular_area(g_, phi0_, 0.0);
+      const double a1 = levelset::granular_area(g_, s_.phi, 0.0);
+      js.set("area_change_pct", a0 > 0 ? 100.0 * (a1 - a0) / a0 : 0.0)
+          .set("interface_l1_error_m2", levelset::interface_l1_error(g_, s_.phi, phi0_));
+    }
+    js.write_root(rc_.out_dir + "/summary.json", g_.comm());
+  };
+  // Where a failure happened, for the message.
+  const Box& box = g_.box();
+  auto where = [&](const diag::CellIndex& c) {
+    return "cell (i, j) = (" + std::to_string(c.i) + ", " + std::to_string(c.j) +
+           ") at (x, y) = (" + num(box.xc(c.i)) + ", " + num(box.yc(c.j)) + ") m";
+  };
+  auto when = [&]() {
+    return "t = " + num(s_.t) + " s, step " + std::to_string(s_.step);
+  };
+  // A failed run: its diagnostics row (the bad values included) and summary.json, then the
+  // error. No checkpoint: the last one written stays the last good state.
+  auto fail = [&](const std::string& what) {
+    std::string msg = what;
+    if (last_ckpt_step_ >= 0)
+      msg += ". The last good checkpoint (t = " + num(last_ckpt_t_) + " s, step " +
+             std::to_string(last_ckpt_step_) + ") is kept in " + rc_.out_dir +
+             "/checkpoint: continue from it with `granflow run --restart " + rc_.out_dir +
+             "` and a smaller step (--set time.cfl=... or time.dt=...)";
+    else
+      msg += ". No checkpoint was written before the failure (output.checkpoint_interval_steps, "
+             "output.checkpoint_wall_s)";
+    write_diag();
+    write_summary("failed", msg);
+    throw RunError(msg);
+  };
+
+  if (!restarted_) {
+    try {
+      stepper_.initialize(s_);
+    } catch (const RunError& e) {
+      fail(std::string(e.what()) + " (in the initial pressure of the fluid at rest, t = 0)");
+    }
+    // A prescribed flow that returns the interface to its start (one turn, a reversed vortex)
+    // has the initial level set as exact answer: keep it for the interface error at the end.
+    if (prescribed) GF_PETSC(VecCopy(s_.phi, phi0_));
+    lp_.vol0 = volume();
+    write_diag();
+    write_vtk();
+    lp_.next_out = s_.t + rc_.output_interval;
+    lp_.next_vtk = s_.t + rc_.vtk_interval;
+  } else {
+    stepper_.resume(s_);
+  }
+  const double t0 = seg_t0_;
+  double last_progress = t0, last_ckpt_wall = t0;
   const long long step0 = s_.step;
   const double tiny = 1e-12 * std::max(1.0, rc_.t_end);
-  double dt_prev = 0;
+  const double h = std::min(g_.hx(), g_.hy());
+  double umax = diag::max_speed(g_, s_.vel);
   while (s_.t < rc_.t_end - tiny && (rc_.max_steps <= 0 || s_.step - step0 < rc_.max_steps)) {
-    const double umax = diag::max_speed(g_, s_.vel);
-    const double dt = choose_dt(umax, dt_prev);
-    if (!(dt >= rc_.dt_min) && s_.t + dt < rc_.t_end - tiny) {
-      std::ostringstream m;
-      m << "time step collapsed to " << dt << " s (floor time.dt_min = " << rc_.dt_min
-        << " s) at t = " << s_.t << " s, step " << s_.step << ", max |u| = " << umax
-        << " m/s; the flow is blowing up: try a smaller time.cfl or time.dt_max";
-      write_diag();
-      throw RunError(m.str());
+    const double dt = choose_dt(umax, lp_.dt_prev);
+    if (!(dt >= rc_.dt_min) && s_.t + dt < rc_.t_end - tiny)
+      fail("time step collapsed to " + num(dt) + " s (floor time.dt_min = " + num(rc_.dt_min) +
+           " s) at " + when() + ", max |u| = " + num(umax) +
+           " m/s: the flow is blowing up; try a smaller time.cfl or time.dt_max");
+    const double t_before = s_.t;
+    try {
+      lp_.last = stepper_.step(s_, dt);
+    } catch (const RunError& e) {
+      fail(std::string(e.what()) + " (in the step from t = " + num(t_before) + " s, step " +
+           std::to_string(s_.step + 1) + ", dt = " + num(dt) + " s)");
     }
-    last = stepper_.step(s_, dt);
-    if (last.fp_capped) ++fp_capped_steps;
-    mu_floor_max = std::max(mu_floor_max, last.mu_i_floor_cells);
-    mu_cap_max = std::max(mu_cap_max, last.mu_i_cap_cells);
-    max_fp_iters = std::max(max_fp_iters, last.fp_iters);
-    dt_prev = dt;
-    // Failure detection: a non-finite velocity or pressure anywhere stops the run.
-    PetscReal nv, np;
-    GF_PETSC(VecNorm(s_.vel, NORM_INFINITY, &nv));
-    GF_PETSC(VecNorm(s_.p, NORM_INFINITY, &np));
-    if (!std::isfinite(nv) || !std::isfinite(np)) {
-      std::ostringstream m;
-      m << "non-finite velocity or pressure at t = " << s_.t << " s, step " << s_.step
-        << " (dt = " << dt << " s); try a smaller time.cfl or time.dt";
-      throw RunError(m.str());
+    const StepStats& last = lp_.last;
+    if (last.fp_capped) ++lp_.fp_capped_steps;
+    lp_.mu_floor_max = std::max(lp_.mu_floor_max, last.mu_i_floor_cells);
+    lp_.mu_cap_max = std::max(lp_.mu_cap_max, last.mu_i_cap_cells);
+    lp_.max_fp_iters = std::max(lp_.max_fp_iters, last.fp_iters);
+    lp_.dt_prev = dt;
+
+    // 1. Failure detection: a non-finite value in any prognostic field, or a speed no flow of
+    //    this solver reaches (an explicit-convection blow-up grows without NaN for a while).
+    const std::pair<const char*, Vec> fields[] = {
+        {"velocity", s_.vel}, {"pressure", s_.p}, {"level set phi", s_.phi}, {"plastic tensor S", s_.S}};
+    for (const auto& [what, v] : fields) {
+      const diag::CellIndex c = diag::first_nonfinite(g_, v);
+      if (c.found())
+        fail(std::string("non-finite ") + what + " (NaN or Inf), first in " + where(c) + ", at " +
+             when() + " (dt = " + num(dt) +
+             " s): the run blew up; try a smaller time step (time.cfl, time.dt_max, or time.dt "
+             "with time.dt_mode = fixed)");
     }
+    const diag::SpeedAt sp = diag::max_speed_at(g_, s_.vel);
+    umax = sp.speed;
+    if (umax > rc_.max_speed)
+      fail("speed " + num(umax) + " m/s above time.max_speed = " + num(rc_.max_speed) +
+           " m/s in " + where(sp.at) + ", at " + when() + " (dt = " + num(dt) +
+           " s, CFL number of the step max|u| dt / h = " + num(umax * dt / h) +
+           "): the run is blowing up; try a smaller time step (time.cfl, time.dt_max, or "
+           "time.dt with time.dt_mode = fixed), or raise time.max_speed if such speeds are real");
+
+    // 2. Scheduled output.
     const bool at_end = s_.t >= rc_.t_end - tiny;
-    if (s_.t >= next_out - tiny || at_end) {
+    bool diag_now = false;
+    if (s_.t >= lp_.next_out - tiny || at_end) {
       write_diag();
-      while (next_out <= s_.t + tiny) next_out += rc_.output_interval;
+      diag_now = true;
+      while (lp_.next_out <= s_.t + tiny) lp_.next_out += rc_.output_interval;
     }
-    if (rc_.vtk_interval > 0 && (s_.t >= next_vtk - tiny || at_end)) {
+    if (rc_.vtk_interval > 0 && (s_.t >= lp_.next_vtk - tiny || at_end)) {
       write_vtk();
-      while (next_vtk <= s_.t + tiny) next_vtk += rc_.vtk_interval;
+      while (lp_.next_vtk <= s_.t + tiny) lp_.next_vtk += rc_.vtk_interval;
     }
+
+    // 3. Checkpoints. The signal flag and the wall clock are per rank: all ranks act on the
+    //    same decision (one reduction per step).
     const double now = wall_now();
+    int flags[2] = {signal::stop_signal(),
+                    root && rc_.checkpoint_wall_s > 0 && now - last_ckpt_wall >= rc_.checkpoint_wall_s};
+    MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, g_.comm());
+    if (flags[0]) {
+      const std::string sig = signal::name(flags[0]);
+      save_checkpoint(sig);
+      // The checkpoint recorded the files' sizes before this extra row: a restart drops it.
+      if (!diag_now) write_diag();
+      const std::string msg = "stopped by " + sig + " at " + when() + "; checkpoint written to " +
+                              rc_.out_dir + "/checkpoint. Continue with: granflow run --restart " +
+                              rc_.out_dir;
+      write_summary("interrupted", msg);
+      throw Interrupted(msg);
+    }
+    const bool by_steps =
+        rc_.checkpoint_interval_steps > 0 && s_.step % rc_.checkpoint_interval_steps == 0;
+    if (by_steps || flags[1]) {
+      save_checkpoint(by_steps ? "every " + std::to_string(rc_.checkpoint_interval_steps) + " steps"
+                               : "wall clock");
+      last_ckpt_wall = wall_now();
+    }
+
+    // 4. Progress.
     if (root && rc_.progress_interval > 0 && now - last_progress >= rc_.progress_interval) {
       const double rate = (s_.step - step0) / (now - t0);
       const double eta_s = (rc_.t_end - s_.t) / dt / std::max(rate, 1e-30);
-      std::fprintf(stderr, "t = %.4f s  dt = %.3e s  step %lld  %.1f steps/s  ETA %.0f s\n",
-                   s_.t, dt, s_.step, rate, eta_s);
+      char line[160];
+      std::snprintf(line, sizeof line, "t = %.4f s  dt = %.3e s  step %lld  %.1f steps/s  ETA %.0f s",
+                    s_.t, dt, s_.step, rate, eta_s);
+      log::message(line);
       last_progress = now;
     }
   }
-  sum.steps = s_.step - step0;
-  sum.t_end = s_.t;
-  sum.wall_s = wall_now() - t0;
-  sum.max_divergence = max_div_run;
-
-  io::JsonObject js;
-  js.set("title", rc_.title)
-      .set("version", std::string(GRANFLOW_GIT_HASH))
-      .set("ranks", static_cast<long long>(g_.size()))
-      .set("nx", static_cast<long long>(g_.nx()))
-      .set("ny", static_cast<long long>(g_.ny()))
-      .set("cells", static_cast<long long>(g_.nx() * g_.ny()))
-      .set("steps", sum.steps)
-      .set("t_end", sum.t_end)
-      .set("wall_s", sum.wall_s)
-      .set("s_per_step", sum.steps > 0 ? sum.wall_s / sum.steps : 0.0)
-      .set("max_divergence", sum.max_divergence)
-      .set("volume_change_pct", sum.volume_change_pct)
-      .set("max_speed", diag::max_speed(g_, s_.vel))
-      .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho))
-      .set("max_fp_iters", static_cast<long long>(max_fp_iters))
-      .set("warnings_fp_capped_steps", fp_capped_steps)
-      .set("mu_i_floor_cells_max", mu_floor_max)
-      .set("mu_i_cap_cells_max", mu_cap_max);
-  if (prescribed && cfg.levelset) {
-    // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
-    const double a0 = levelset::granular_area(g_, phi0, 0.0);
-    const double a1 = levelset::granular_area(g_, s_.phi, 0.0);
-    js.set("area_change_pct", a0 > 0 ? 100.0 * (a1 - a0) / a0 : 0.0)
-        .set("interface_l1_error_m2", levelset::interface_l1_error(g_, s_.phi, phi0));
-  }
-  if (root) js.write(rc_.out_dir + "/summary.json");
+  // The end (t_end or time.max_steps): a checkpoint, from which a longer run can continue.
+  if (s_.step != last_ckpt_step_) save_checkpoint("end of run");
+  write_summary(s_.t >= rc_.t_end - tiny ? "completed" : "stopped at time.max_steps", "");
   return sum;
 }
 

@@ -1,14 +1,31 @@
 #pragma once
 // A simulation is a model (grid, state, stepper) plus the time loop: the time-step choice,
-// scheduled diagnostics, VTK output and probes, the progress line, failure detection and the
-// final summary. It reads the state only; the physics is in stepper/.
+// scheduled diagnostics, VTK output and probes, checkpoints, the progress line, failure
+// detection and the final summary. It reads the state only; the physics is in stepper/.
+//
+// Each step of the loop, after the stepper:
+//   1. failure checks: non-finite velocity, pressure, phi or S; a speed above max_speed
+//      (RunError, after writing the diagnostics and summary.json; no checkpoint of the bad
+//      state, so the last checkpoint stays the last good one);
+//   2. scheduled output: diagnostics.csv and probes every output_interval, VTK every
+//      vtk_interval;
+//   3. checkpoint if due (every checkpoint_interval_steps steps, every checkpoint_wall_s of
+//      wall clock) or on SIGINT/SIGTERM (then Interrupted is thrown);
+//   4. the progress line (stderr and granflow.log).
+// A restart (restart() before run()) restores the state and every loop variable from the
+// checkpoint and cuts the output files back to their size at the checkpoint, so a restarted
+// run writes exactly the rows and files the uninterrupted run writes after that point.
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
+#include "io/Checkpoint.hpp"
+#include "io/Csv.hpp"
 #include "io/Probes.hpp"
+#include "io/Vtk.hpp"
 #include "stepper/Stepper.hpp"
 
 namespace gf {
@@ -20,35 +37,83 @@ struct RunConfig {
   double cfl = 0.5;            // convective CFL number (and gravity-wave limit, see choose_dt)
   double dt_max = 1e-3;        // s
   double dt_min = 1e-9;        // s: below this the run stops as failed
-  long long max_steps = 0;     // 0 = unlimited
+  double max_speed = 100;      // m/s: above this anywhere the run stops as blown up
+  long long max_steps = 0;     // 0 = unlimited (steps of this run, not counting a restart's past)
   double output_interval = 0.01;    // s
   double vtk_interval = 0.05;       // s, 0 = none
   double progress_interval = 2.0;   // s of wall clock
+  long long checkpoint_interval_steps = 0;  // steps, 0 = none (besides the end and signals)
+  double checkpoint_wall_s = 0;             // s of wall clock, 0 = none
+  double volume_warn_pct = 1.0;  // %: |granular volume change| above this counts as a warning
   std::vector<io::ProbeSpec> probes;
   std::string out_dir;
   std::string title;
 };
 
 struct RunSummary {
-  long long steps = 0;
+  long long steps = 0;  // all steps since t = 0 (a restarted run includes the earlier ones)
   double t_end = 0, wall_s = 0, max_divergence = 0, volume_change_pct = 0;
 };
 
 class Simulation {
  public:
   Simulation(const Grid& g, State& s, Stepper& stepper, const RunConfig& rc);
-  // Runs to t_end; writes diagnostics.csv, VTK, probes and summary.json into out_dir.
-  // Throws RunError on NaN / dt collapse / solver failure, after writing what it has.
+  // Text files stored in every checkpoint folder (name, content), e.g. the resolved case,
+  // which a restart compares with the case it is given.
+  void set_checkpoint_files(std::vector<std::pair<std::string, std::string>> files) {
+    ckpt_files_ = std::move(files);
+  }
+  // Collective. Before run(): continue from the checkpoint in `ckpt_dir` (read with
+  // io::read_checkpoint_header into `h`) instead of starting at t = 0. Checks the checkpoint
+  // against this run's grid (InputError naming the mismatch) and t_end, loads the fields
+  // (IoError if they cannot be read). Touches no file: run() continues the output files.
+  void restart(const std::string& ckpt_dir, const io::CheckpointHeader& h);
+  // Runs to t_end; writes diagnostics.csv, VTK, probes, checkpoints and summary.json into
+  // out_dir. Throws RunError on NaN / blow-up / dt collapse / solver failure, after writing
+  // the diagnostics and summary.json; Interrupted after a SIGINT/SIGTERM, after writing a
+  // checkpoint, the diagnostics and summary.json.
   RunSummary run();
   // The next time step: fixed, or min(dt_max, cfl h / max|u|, cfl sqrt(h/|g|)), growing by at
   // most 20 % per step (keeps the variable-step BDF2 stable) and clipped to land on t_end.
   double choose_dt(double max_speed, double dt_prev) const;
 
  private:
+  // Everything of the loop that the next steps and the final summary depend on: checkpointed.
+  struct Loop {
+    double dt_prev = 0;              // s, the last step (0 before the first)
+    double next_out = 0, next_vtk = 0;  // s, next diagnostics / VTK time
+    double vol0 = 0;                 // m^2/m, granular volume at t = 0
+    double max_div = 0;              // 1/s, largest divergence in a diagnostics row
+    double volume_change_pct = 0;    // %, of the last diagnostics row
+    double wall_s = 0;               // s of wall clock of the runs before this one
+    long long fp_capped_steps = 0;   // steps whose fixed point stopped at its cap (a warning)
+    long long volume_warn_rows = 0;  // diagnostics rows with |volume change| > volume_warn_pct
+    long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
+    long long restarts = 0;
+    int max_fp_iters = 0;
+    StepStats last;                  // the last step's statistics (diagnostics columns)
+  };
+  void save_checkpoint(const std::string& reason);
+
   const Grid& g_;
   State& s_;
   Stepper& stepper_;
   RunConfig rc_;
+  Loop lp_;
+  std::vector<std::pair<std::string, std::string>> ckpt_files_;
+  // A restart: where the output files stood at the checkpoint.
+  bool restarted_ = false;
+  long long diag_bytes_ = 0;
+  std::vector<long long> probe_bytes_;
+  std::vector<std::pair<double, std::string>> vtk_entries_;
+  Field phi0_;  // the initial level set (prescribed flows: the exact answer after one turn)
+  // The current writers (set during run()), for save_checkpoint.
+  const io::CsvWriter* csv_ = nullptr;
+  const io::ProbeWriter* probes_ = nullptr;
+  const io::VtkSeries* vtk_ = nullptr;
+  long long last_ckpt_step_ = -1;  // step and time of the last checkpoint written or loaded
+  double last_ckpt_t_ = 0;
+  double seg_t0_ = 0;  // wall clock at the start of run(), s
 };
 
 }  // namespace gf

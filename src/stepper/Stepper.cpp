@@ -230,6 +230,19 @@ void Stepper::initialize(State& s) {
   projector_->project(u_tilde_, s.p, s.rho, 1.0, 1.0);
 }
 
+void Stepper::resume(State& s) {
+  if (predictor_) predictor_->set_phase(s.phi);
+  // rho and eta come from the checkpoint as the last step left them (for a prescribed flow,
+  // those of the initial phi; with mu(I), those of that step's start): recomputing them here
+  // would change the diagnostics of a restart that takes no step. What else the stepper keeps
+  // between steps is rebuilt: the nodal viscosity of a one-phase run (constant; mu(I) rewrites
+  // the interior nodes every step), the pressure matrix (assembled only at the first step of
+  // a one-phase run), and the viscous matrix at the next step since assembled_a0dt_ is unset.
+  if (!cfg_.levelset) GF_PETSC(VecSet(eta_node_, cfg_.eta_gran));
+  if (projector_) projector_->assemble(s.rho);
+  assembled_a0dt_ = -1;
+}
+
 StepStats Stepper::step(State& s, double dt) {
   StepStats st;
   const bool first = (s.step == 0);

@@ -63,6 +63,12 @@ class Stepper {
 
   // Properties at t = 0 and the initial (hydrostatic-like) pressure of the fluid at rest.
   void initialize(State& s);
+  // Instead of initialize() when s was loaded from a checkpoint (rho and eta included):
+  // rebuilds what the stepper keeps between steps from s alone (phase, nodal viscosity, the
+  // pressure matrix), without touching s. Everything else the stepper holds is rebuilt inside each
+  // step (kappa, kappa_b, the viscous matrix, the Anderson history), so the next step is
+  // bit-for-bit the step the uninterrupted run takes.
+  void resume(State& s);
   // Advances s from t^n to t^n + dt.
   StepStats step(State& s, double dt);
   // rho, eta (cells) and eta at the nodes from phi (step 2); public for diagnostics and tests.

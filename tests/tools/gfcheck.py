@@ -13,6 +13,10 @@ and exits 0 on pass, 1 on a failed check, 2 on unreadable or malformed input.
       Row-by-row comparison of two CSV files (see cmd_compare for the rule).
   gfcheck.py extract RUN_DIR/diagnostics.csv OUT.csv --columns t,max_speed,...
       Writes the chosen columns (17 significant digits): how regression references are made.
+  gfcheck.py pvd RUN_DIR/fields.pvd [--count N] [--same-as OTHER.pvd]
+      The ParaView collection is valid XML, lists files that exist (each a VTK XML
+      RectilinearGrid file), with strictly increasing times, and every BASE_*.vtr file of the
+      folder is listed; optionally exactly N entries, or the same (time, file) list as OTHER.
 """
 import argparse
 import sys
@@ -227,6 +231,53 @@ def cmd_extract(a):
     return 0
 
 
+def pvd_entries(path):
+    import xml.etree.ElementTree as ET
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError) as e:
+        raise InputProblem(f"{path}: not valid XML: {e}")
+    if root.tag != "VTKFile" or root.get("type") != "Collection":
+        raise InputProblem(f"{path}: not a VTK Collection (root <{root.tag} type={root.get('type')}>)")
+    return [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")]
+
+
+def cmd_pvd(a):
+    import glob
+    import os
+    entries = pvd_entries(a.pvd)
+    folder = os.path.dirname(os.path.abspath(a.pvd))
+    base = os.path.splitext(os.path.basename(a.pvd))[0]
+    bad = []
+    for t, f in entries:
+        path = os.path.join(folder, f)
+        if not os.path.isfile(path):
+            bad.append(f"lists {f} (t = {t}), which does not exist")
+            continue
+        with open(path, "rb") as fh:
+            head = fh.read(300)
+        if not head.startswith(b"<?xml") or b'<VTKFile type="RectilinearGrid"' not in head:
+            bad.append(f"{f} is not a VTK XML RectilinearGrid file")
+    times = [t for t, _ in entries]
+    if any(t1 <= t0 for t0, t1 in zip(times, times[1:])):
+        bad.append(f"times are not strictly increasing: {times}")
+    listed = {f for _, f in entries}
+    for f in sorted(glob.glob(os.path.join(folder, base + "_*.vtr"))):
+        if os.path.basename(f) not in listed:
+            bad.append(f"{os.path.basename(f)} is in the folder but not listed")
+    if a.count is not None and len(entries) != a.count:
+        bad.append(f"{len(entries)} entries, expected {a.count}")
+    if a.same_as:
+        other = pvd_entries(a.same_as)
+        if other != entries:
+            bad.append(f"entries differ from {a.same_as}: {entries} vs {other}")
+    for b in bad:
+        print(f"FAIL  {a.pvd}: {b}")
+    print(f"{a.pvd}: valid XML, {len(entries)} files listed, t = {times[0] if times else '-'}"
+          f" .. {times[-1] if times else '-'}: {'FAIL' if bad else 'ok'}")
+    return 1 if bad else 0
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -253,10 +304,14 @@ def main():
     e.add_argument("src"), e.add_argument("dst")
     e.add_argument("--columns", required=True)
     e.add_argument("--comment", action="append")
+    v = sub.add_parser("pvd")
+    v.add_argument("pvd")
+    v.add_argument("--count", type=int)
+    v.add_argument("--same-as")
     a = p.parse_args()
     try:
         return {"ghia": cmd_ghia, "rest": cmd_rest, "compare": cmd_compare,
-                "extract": cmd_extract}[a.cmd](a)
+                "extract": cmd_extract, "pvd": cmd_pvd}[a.cmd](a)
     except InputProblem as ex:
         print(f"gfcheck: {ex}", file=sys.stderr)
         return 2

@@ -818,3 +818,28 @@ TEST(CaseFile, InitialVortexVelocity) {
   EXPECT_STREQ(gf::to_string(c.initial.velocity), "vortex");
   EXPECT_DOUBLE_EQ(gf::velocity_scale(c), c.initial.velocity_amplitude);
 }
+
+// A restart compares the resolved case it is given with the one its checkpoint was written
+// with: the changeable keys are skipped, every other difference is named (tables and probes).
+TEST(CaseFile, RestartDifferencesNameTheKeys) {
+  const std::string probe = "[[probe]]\nname = \"a\"\nx0 = 0.0\ny0 = 0.01\nx1 = 0.8\ny1 = 0.01\n";
+  const auto a = load_case(write_file("ra.toml", probe), {});
+  const auto b = load_case(write_file("rb.toml", probe),
+                           {"time.t_end=2", "time.cfl=0.3", "grid.n=32"});
+  const auto& keep = gf::restart_changeable_keys();
+  EXPECT_TRUE(gf::case_differences(a.resolved_toml, a.resolved_toml, keep).empty());
+  auto d = gf::case_differences(a.resolved_toml, b.resolved_toml, keep);
+  ASSERT_EQ(d.size(), 1u) << (d.empty() ? "" : d[0]);
+  EXPECT_EQ(d[0], "grid.n: 64 at the checkpoint, 32 now");
+  // Without the changeable keys skipped, t_end and cfl are differences too.
+  EXPECT_EQ(gf::case_differences(a.resolved_toml, b.resolved_toml, {}).size(), 3u);
+  const auto c = load_case(write_file("rc.toml", probe + "points = 11\n"), {});
+  d = gf::case_differences(a.resolved_toml, c.resolved_toml, keep);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0], "probe[1].points: 101 at the checkpoint, 11 now");
+  const auto none = load_case(write_file("rn.toml", ""), {});
+  d = gf::case_differences(a.resolved_toml, none.resolved_toml, keep);
+  ASSERT_FALSE(d.empty());
+  EXPECT_NE(d[0].find("probe[1]."), std::string::npos);
+  EXPECT_NE(d[0].find("absent now"), std::string::npos);
+}

@@ -171,3 +171,44 @@ TEST(Diagnostics, MaxInGranular) {
 }
 
 }  // namespace
+
+// Failure locations (sim/ stops a run with "what, where"): the first non-finite cell in (j, i)
+// order over all ranks, whatever the field's dof, and the cell of the largest speed.
+namespace {
+TEST(Diagnostics, FirstNonFiniteCell) {
+  Grid g(PETSC_COMM_WORLD, 16, 12, 0.8, 0.3);
+  gf::State s(g);
+  EXPECT_FALSE(gf::diag::first_nonfinite(g, s.p).found());
+  // Two bad cells in p, on different rows (on 2 ranks the rows 2 and 9 lie on different
+  // ranks): the one with the lower j is reported.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  set_cells(g, s.p, [&](PetscInt i, PetscInt j) {
+    return (i == 3 && j == 9) || (i == 11 && j == 2) ? nan : 1.0;
+  });
+  auto c = gf::diag::first_nonfinite(g, s.p);
+  EXPECT_EQ(c.i, 11);
+  EXPECT_EQ(c.j, 2);
+  // An infinity in the third component of the tensor S (dof 3) at cell (7, 10).
+  const gf::Box& b = g.box();
+  PetscScalar*** S;
+  GF_PETSC(DMDAVecGetArrayDOF(g.dm_ten(), s.S, &S));
+  if (7 >= b.xs && 7 < b.xe() && 10 >= b.ys && 10 < b.ye())
+    S[10][7][2] = std::numeric_limits<double>::infinity();
+  GF_PETSC(DMDAVecRestoreArrayDOF(g.dm_ten(), s.S, &S));
+  c = gf::diag::first_nonfinite(g, s.S);
+  EXPECT_EQ(c.i, 7);
+  EXPECT_EQ(c.j, 10);
+}
+
+TEST(Diagnostics, MaxSpeedLocation) {
+  Grid g(PETSC_COMM_WORLD, 16, 12, 0.8, 0.3);
+  gf::State s(g);
+  // u = 2 m/s on both x-faces of cell (5, 8) only: speed 2 there, 1 in its neighbours.
+  set_vel(g, s.vel, [](PetscInt i, PetscInt j) { return j == 8 && (i == 5 || i == 6) ? 2.0 : 0.0; },
+          [](PetscInt, PetscInt) { return 0.0; });
+  const auto sp = gf::diag::max_speed_at(g, s.vel);
+  EXPECT_DOUBLE_EQ(sp.speed, 2.0);
+  EXPECT_EQ(sp.at.i, 5);
+  EXPECT_EQ(sp.at.j, 8);
+}
+}  // namespace

@@ -50,7 +50,8 @@ expect_error() {
 sed 's/^rho = 1000.0/rhoo = 1000.0/' "$base" > "$tmp/unknown_key.toml"
 sed 's/^rho = 1000.0/rho = -1000.0/' "$base" > "$tmp/negative_rho.toml"
 sed 's/^x1 = 0.146/x1 = 0.7/' "$base" > "$tmp/column_outside.toml"
-for f in unknown_key negative_rho column_outside; do
+sed 's/^x1 = 0.584/x1 = 0.7/' "$base" > "$tmp/probe_outside.toml"  # the probe's end point
+for f in unknown_key negative_rho column_outside probe_outside; do
   if cmp -s "$base" "$tmp/$f.toml"; then
     echo "FAIL: could not make $f.toml from $base (the case file changed?)"; exit 1
   fi
@@ -76,6 +77,32 @@ expect_error "--set of the wrong type" "$base" "--set grid.n=abc" \
   "grid.n" "wrong type" "expected an integer"
 expect_error "--set without '='" "$base" "--set grid.n" \
   "--set grid.n" "expected key=value"
+
+expect_error "column touching the top" "$base" "--set initial.y1=0.34" \
+  "initial.y1 = 0.34" "the column touches the top" "so the smeared interface does not touch"
+expect_error "probe outside the domain" "$tmp/probe_outside.toml" "" \
+  "probe[1].x1 = 0.7" "the probe must lie inside the domain" "domain.Lx = 0.584"
+expect_error "mu(I) without d" "$base" "--set rheology.viscosity=mu_i --set rheology.yield=dp" \
+  "rheology.d" "mu(I) without d" "must be > 0 (m)"
+expect_error "mu(I) with the hp yield stress" "$base" \
+  "--set rheology.viscosity=mu_i --set rheology.yield=hp --set rheology.d=0.001" \
+  "rheology.viscosity" "needs rheology.yield = \"dp\", not \"hp\""
+expect_error "bingham without a yield stress" "$base" "--set rheology.yield=bingham" \
+  "rheology.tau_y" "needs a yield stress: must be > 0 (Pa)"
+expect_error "friction angle of 90 degrees" "$base" "--set rheology.friction_angle=90" \
+  "rheology.friction_angle = 90" "must be in (0, 90) (degrees)"
+expect_error "CFL above 1" "$base" "--set time.cfl=1.5" "time.cfl = 1.5" "must be in (0, 1]"
+expect_error "dt_min above dt_max" "$base" "--set time.dt_min=0.01" \
+  "time.dt_min = 0.01" "must be < time.dt_max = 0.001 (s)"
+# The keys of checkpoints and failure handling (README "Checkpoints, restarts, exit codes").
+expect_error "max_speed of 0" "$base" "--set time.max_speed=0" \
+  "time.max_speed = 0" "must be > 0 (m/s)"
+expect_error "negative checkpoint interval" "$base" "--set output.checkpoint_interval_steps=-1" \
+  "output.checkpoint_interval_steps = -1" "must be >= 0 (steps)"
+expect_error "negative checkpoint wall time" "$base" "--set output.checkpoint_wall_s=-5" \
+  "output.checkpoint_wall_s = -5" "must be >= 0 (s)"
+expect_error "volume warning threshold of 0" "$base" "--set output.volume_warn_pct=0" \
+  "output.volume_warn_pct = 0" "must be > 0 (%)"
 
 # Every bundled case is valid.
 for f in "$src"/cases/*.toml "$src"/cases/verify/*.toml; do
