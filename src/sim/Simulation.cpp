@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/Error.hpp"
+#include "core/Profile.hpp"
 #include "core/Log.hpp"
 #include "core/Signal.hpp"
 #include "diagnostics/Diagnostics.hpp"
@@ -126,6 +127,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
   for (std::size_t k = 0; k < ve.size(); ++k)
     h.set_text("vtk." + std::to_string(k), hex(ve[k].first) + " " + ve[k].second);
   const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
+  prof::Scope pscope(prof::Checkpoint);
   io::write_checkpoint(g_.comm(), rc_.out_dir, std::move(h),
                        checkpoint_fields(s_, phi0_, prescribed), ckpt_files_);
   last_ckpt_step_ = s_.step;
@@ -268,6 +270,7 @@ RunSummary Simulation::run() {
   RunSummary sum;
 
   auto write_diag = [&]() {
+    prof::Scope pscope(prof::Output);
     const double vol = volume();
     const double vchange = lp_.vol0 > 0 ? 100.0 * (vol - lp_.vol0) / lp_.vol0 : 0.0;
     const double div = diag::max_divergence(g_, s_.vel);
@@ -305,6 +308,7 @@ RunSummary Simulation::run() {
   };
   auto write_vtk = [&]() {
     if (!vtk) return;
+    prof::Scope pscope(prof::Output);
     io::cell_velocity(g_, s_.vel, ucell, nullptr, speed);
     stepper_.derived_fields(s_, dnorm, snorm, yielded);
     vtk->write(s_.t, {{"phi", s_.phi, 1}, {"rho", s_.rho, 1}, {"u", ucell, 2},
@@ -341,6 +345,19 @@ RunSummary Simulation::run() {
         .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
         .set("mu_i_floor_cells_max", lp_.mu_floor_max)
         .set("mu_i_cap_cells_max", lp_.mu_cap_max);
+    {
+      // Time by phase (core/Profile.hpp), the largest over the ranks, s: for this process, i.e.
+      // since the start or the last restart. Peak resident memory, MiB: largest rank, all ranks.
+      std::array<double, prof::kCount + 1> loc{}, mx{};
+      for (int k = 0; k < prof::kCount; ++k) loc[k] = prof::seconds()[k];
+      loc[prof::kCount] = prof::peak_rss_mib();
+      MPI_Allreduce(loc.data(), mx.data(), prof::kCount + 1, MPI_DOUBLE, MPI_MAX, g_.comm());
+      double rss_sum = 0;
+      MPI_Allreduce(&loc[prof::kCount], &rss_sum, 1, MPI_DOUBLE, MPI_SUM, g_.comm());
+      for (int k = 0; k < prof::kCount; ++k)
+        js.set(std::string("time_") + prof::name(static_cast<prof::Phase>(k)) + "_s", mx[k]);
+      js.set("peak_rss_mib_max_rank", mx[prof::kCount]).set("peak_rss_mib_all_ranks", rss_sum);
+    }
     if (last_ckpt_step_ >= 0)
       js.set("checkpoint_t", last_ckpt_t_).set("checkpoint_step", last_ckpt_step_);
     if (!message.empty()) js.set("message", message);

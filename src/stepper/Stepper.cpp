@@ -1,5 +1,7 @@
 #include "stepper/Stepper.hpp"
 
+#include "core/Profile.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -249,8 +251,12 @@ StepStats Stepper::step(State& s, double dt) {
   // 1. Level set, eq. 26, advected by the solenoidal u^n.
   if (cfg_.prescribed != PrescribedFlow::None) prescribe_velocity(s, s.t + 0.5 * dt);
   if (cfg_.levelset) {
-    advector_->step(s.phi, s.vel, dt);
+    {
+      prof::Scope ps(prof::Advect);
+      advector_->step(s.phi, s.vel, dt);
+    }
     if (cfg_.redistance_every > 0 && (s.step + 1) % cfg_.redistance_every == 0) {
+      prof::Scope ps(prof::Redistance);
       redistancer_->run(s.phi);
       st.redistanced = true;
     }
@@ -267,18 +273,21 @@ StepStats Stepper::step(State& s, double dt) {
   const bool props_change =
       cfg_.levelset || first || cfg_.rheo.viscosity == rheology::Viscosity::MuI;
   if (props_change) {
+    prof::Scope ps(prof::Properties);
     update_properties(s);
     predictor_->set_phase(s.phi);
   }
   // 3. Prediction, eq. 31 (kappa = 0: Newtonian phases).
   const auto c = momentum::TimeCoeffs::make(dt, s.dt, first);
   if (props_change || c.a0 / dt != assembled_a0dt_) {
+    prof::Scope ps(prof::Assemble);
     predictor_->assemble(s.rho, s.eta, eta_node_, c.a0 / dt);
     assembled_a0dt_ = c.a0 / dt;
   }
   predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
   GF_PETSC(VecCopy(s.vel, u_tilde_));  // initial guess
-  if (!plastic_) {
+  if (prof::Scope pfp(prof::FixedPoint); !plastic_) {
+    prof::Scope ps(prof::ViscousSolve);
     st.visc_its = predictor_->solve(rhs0_, u_tilde_);
   } else {
     // The fixed point of eq. 31: viscous solve with the current S and s_t, then
@@ -295,25 +304,35 @@ StepStats Stepper::step(State& s, double dt) {
     double last_ch = std::numeric_limits<double>::infinity();
     for (int k = 1; k <= cfg_.rheo.fp_max_iter; ++k) {
       GF_PETSC(VecCopy(rhs0_, rhs_));
-      predictor_->add_plastic(kappa_, s.S, kappa_b_, s.s_wall, rhs_);
+      {
+        prof::Scope ps(prof::Plastic);
+        predictor_->add_plastic(kappa_, s.S, kappa_b_, s.s_wall, rhs_);
+      }
       if (fp_monitor_) GF_PETSC(VecCopy(u_tilde_, rhs0_mon_));
-      st.visc_its += predictor_->solve(rhs_, u_tilde_);
+      {
+        prof::Scope ps(prof::ViscousSolve);
+        st.visc_its += predictor_->solve(rhs_, u_tilde_);
+      }
       PetscReal du = 0, un = 0;
       if (fp_monitor_) {
         GF_PETSC(VecAXPY(rhs0_mon_, -1.0, u_tilde_));
         GF_PETSC(VecNorm(rhs0_mon_, NORM_INFINITY, &du));
         GF_PETSC(VecNorm(u_tilde_, NORM_INFINITY, &un));
       }
-      predictor_->strain_rate(u_tilde_, s.eta, D_);
-      // G(x): the projections of eq. 31 applied to the current iterate x = (S, s_t).
-      GF_PETSC(VecCopy(s.S, gS_));
-      GF_PETSC(VecCopy(s.s_wall, gW_));
-      double ch = rheology::update_plastic(g_, cfg_.rheo, gS_, S_n_, kappa_, D_, s.rho, s.eta,
-                                           c.a0 / dt, theta);
-      if (predictor_->has_wall_friction()) {
-        predictor_->wall_yield(s.p, gS_, kappa_, D_, s.eta, kappa_b_);
-        ch = std::max(ch, predictor_->update_wall(u_tilde_, kappa_b_, gW_, sw_n_, s.rho, s.eta,
-                                                  c.a0 / dt, theta, cfg_.rheo.r_factor));
+      double ch;
+      {
+        prof::Scope ps(prof::Plastic);
+        predictor_->strain_rate(u_tilde_, s.eta, D_);
+        // G(x): the projections of eq. 31 applied to the current iterate x = (S, s_t).
+        GF_PETSC(VecCopy(s.S, gS_));
+        GF_PETSC(VecCopy(s.s_wall, gW_));
+        ch = rheology::update_plastic(g_, cfg_.rheo, gS_, S_n_, kappa_, D_, s.rho, s.eta,
+                                             c.a0 / dt, theta);
+        if (predictor_->has_wall_friction()) {
+          predictor_->wall_yield(s.p, gS_, kappa_, D_, s.eta, kappa_b_);
+          ch = std::max(ch, predictor_->update_wall(u_tilde_, kappa_b_, gW_, sw_n_, s.rho, s.eta,
+                                                    c.a0 / dt, theta, cfg_.rheo.r_factor));
+        }
       }
       st.fp_iters = k;
       st.fp_change = ch;
@@ -332,6 +351,7 @@ StepStats Stepper::step(State& s, double dt) {
         continue;
       }
       // Anderson mixing of the last iterates, then back into |S| <= 1, |s_t| <= 1.
+      prof::Scope ps(prof::Anderson);
       anderson_->update({s.S, s.s_wall}, {gS_, gW_});
       rheology::project_field(g_, s.S, kappa_);
       {
@@ -348,8 +368,14 @@ StepStats Stepper::step(State& s, double dt) {
     st.mu_i_cap_cells = mu_i_cap_cells_;
   }
   // 4. Projection, eq. 32.
-  if (props_change) projector_->assemble(s.rho);
-  st.pres_its = projector_->project(u_tilde_, s.p, s.rho, c.a0, dt);
+  {
+    prof::Scope ps(prof::Assemble);
+    if (props_change) projector_->assemble(s.rho);
+  }
+  {
+    prof::Scope ps(prof::Pressure);
+    st.pres_its = projector_->project(u_tilde_, s.p, s.rho, c.a0, dt);
+  }
   GF_PETSC(VecCopy(s.vel, s.vel_old));
   GF_PETSC(VecCopy(u_tilde_, s.vel));
   s.dt_old = s.dt;
