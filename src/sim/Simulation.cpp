@@ -59,8 +59,11 @@ RunSummary Simulation::run() {
                      "granular_u", "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
                      "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m",
                      "bottom_slide_m", "left_normal_N", "left_friction_N", "bottom_normal_N",
-                     "bottom_friction_N"},
+                     "bottom_friction_N", "front_x", "backwall_h", "max_p_granular",
+                     "max_speed_granular"},
                     g_.comm());
+  // Column-collapse measures and their files (profiles.csv, structure.csv, deposit.csv).
+  diag::CollapseMonitor collapse(g_, rc_.collapse, rc_.out_dir, cfg.levelset);
   io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes);
   Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
       yielded(g_.dm_cell(), "yielded");
@@ -90,11 +93,13 @@ RunSummary Simulation::run() {
     // Where the granular material sticks to / slides on the back wall and the bottom (eqs. 22-23).
     const auto wc = stepper_.wall_contact(s_);
     const auto &stick = wc.stick_m, &slide = wc.slide_m;
+    const auto col = collapse.sample(s_.t, s_.phi, s_.vel, s_.p);
     csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
              diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
              static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
-             slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2]});
+             slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2],
+             col.front_x, col.backwall_h, col.max_p_granular, col.max_speed_granular});
     // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
     io::NamedCellFields extra;
     if (probes.samples("D_norm") || probes.samples("S_norm")) {
@@ -199,6 +204,7 @@ RunSummary Simulation::run() {
       .set("warnings_fp_capped_steps", fp_capped_steps)
       .set("mu_i_floor_cells_max", mu_floor_max)
       .set("mu_i_cap_cells_max", mu_cap_max);
+  collapse.summarize(js);
   if (prescribed && cfg.levelset) {
     // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
     const double a0 = levelset::granular_area(g_, phi0, 0.0);

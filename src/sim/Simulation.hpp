@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "diagnostics/Collapse.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
 #include "io/Probes.hpp"
@@ -25,6 +26,7 @@ struct RunConfig {
   double vtk_interval = 0.05;       // s, 0 = none
   double progress_interval = 2.0;   // s of wall clock
   std::vector<io::ProbeSpec> probes;
+  diag::CollapseConfig collapse;  // front, profile, deposit measures (diagnostics/Collapse.hpp)
   std::string out_dir;
   std::string title;
 };
