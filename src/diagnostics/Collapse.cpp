@@ -296,12 +296,13 @@ CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec 
   umax_.push_back(s.max_speed_granular);
   h_last_ = h;
   if (profiles_ && g_.rank() == 0) {
+    const double a_min = 1e-6 * g_.hx() * g_.hy();
     for (std::size_t i = 0; i < h.size(); ++i) profiles_->row({t, x_[i], h[i]});
     for (const auto& d : deps) {
       for (std::size_t i = 0; i < h.size(); ++i)
         structure_->row({t, d.cutoff, x_[i], h[i], d.h_deposit[i], h[i] - d.h_deposit[i]});
       deposit_->row({t, d.cutoff, s.max_speed_granular, s.front_x, d.x_deposit, d.L, d.L_d, d.L_h,
-                     d.A, d.A_d, d.A > 0 ? d.A_d / d.A : kNaN});
+                     d.A, d.A_d, d.A >= a_min ? d.A_d / d.A : kNaN});
     }
   }
   return s;

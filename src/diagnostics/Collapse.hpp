@@ -46,7 +46,8 @@
 //   L = front_x - L_c, L_d = x_d - L_c, L_h = L - L_d (the sliding head), m.
 //   A and A_d, m^2/m: the areas of the mass and of the deposit beyond the gate,
 //     sum_i w_i h_i hx and sum_i w_i h^d_i hx, w_i = clamp((x_i + hx/2 - L_c) / hx, 0, 1) the
-//     part of column i beyond x = L_c. A_d / A is NaN when A = 0 (before the gate is passed).
+//     part of column i beyond x = L_c. A_d / A is NaN while A < 1e-6 hx hy (nothing beyond the
+//     gate yet: the ratio of round-off).
 //   At rest (U = 0) everything is deposit: h^d = h, x_d = front_x.
 //
 // The four stages of the front (section 4.1.3, Fig. 8), from the outputs (t_k, front_x_k):

@@ -60,4 +60,10 @@ echo "--- case A (DP, Coulomb walls): diagnostics.csv, 1 rank vs 2 ranks"
 "$py" "$check" compare "$tmp/dp1/diagnostics.csv" "$tmp/dp2/diagnostics.csv" --rtol 1e-8 \
   --atol max_divergence=1e-9 --atol fp_change=1e-9 --int-tol visc_its=100000 \
   --int-tol pres_its=2 --int-tol fp_iters=1000 || fail=1
+# The collapse measures (diagnostics/Collapse.hpp) reduce columns across ranks: the profile,
+# the deposit and flowing layer and their lengths and areas must agree like the fields do.
+for f in profiles structure deposit; do
+  echo "--- case A: $f.csv, 1 rank vs 2 ranks"
+  "$py" "$check" compare "$tmp/dp1/$f.csv" "$tmp/dp2/$f.csv" --rtol 1e-8 || fail=1
+done
 exit $fail
