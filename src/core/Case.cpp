@@ -268,7 +268,9 @@ Params case_params() {
                   "Basal deposit of section 4.2.5: the granular material whose speed is below "
                   "cutoff x (max granular |u|), one deposit per value (the paper uses 7.5 % and "
                   "0.75 %).");
-  p.add_real2("collapse.slope_back_range", "m", {0.0, 0.1}, Range::ge(0),
+  // Case A's deposit (our choice, the paper gives no slopes for it): a plateau on the back
+  // wall to x ~ 0.04 m, then one slope to the gate and a flatter one beyond it.
+  p.add_real2("collapse.slope_back_range", "m", {0.05, 0.15}, Range::ge(0),
               "Final deposit: the back slope is the least-squares slope of h(x) over the "
               "columns with x in this range (and x < front).");
   p.add_real2("collapse.slope_front_range", "m", {0.2, 0.8}, Range::ge(0),

@@ -265,8 +265,8 @@ CollapseMonitor::CollapseMonitor(const Grid& g, CollapseConfig cfg, const std::s
         std::vector<std::string>{"t", "cutoff", "x", "h", "h_deposit", "h_l"}, g.comm());
     deposit_ = std::make_unique<io::CsvWriter>(
         out_dir + "/deposit.csv",
-        std::vector<std::string>{"t", "cutoff", "max_speed_granular", "front_x", "x_deposit", "L",
-                                 "L_d", "L_h", "A", "A_d", "Ad_over_A"},
+        std::vector<std::string>{"t", "cutoff", "max_speed_granular", "u_ref", "front_x",
+                                 "x_deposit", "L", "L_d", "L_h", "A", "A_d", "Ad_over_A"},
         g.comm());
   }
 }
@@ -287,8 +287,10 @@ CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec 
     for (const double v : h) Hc_ = std::max(Hc_, v);
     first_ = false;
   }
-  const auto deps = basal_deposits(g_, vel, h, s.front_x, gate_, s.max_speed_granular,
-                                   cfg_.cutoffs);
+  // The reference speed of the cut-offs: the largest granular speed so far (see the header).
+  if (std::isnan(s.max_speed_granular) || std::isnan(u_ref_)) u_ref_ = kNaN;
+  else u_ref_ = std::max(u_ref_, s.max_speed_granular);
+  const auto deps = basal_deposits(g_, vel, h, s.front_x, gate_, u_ref_, cfg_.cutoffs);
   max_p_ = std::isnan(max_p_) || std::isnan(s.max_p_granular) ? kNaN
                                                                 : std::max(max_p_, s.max_p_granular);
   t_.push_back(t);
@@ -301,8 +303,8 @@ CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec 
     for (const auto& d : deps) {
       for (std::size_t i = 0; i < h.size(); ++i)
         structure_->row({t, d.cutoff, x_[i], h[i], d.h_deposit[i], h[i] - d.h_deposit[i]});
-      deposit_->row({t, d.cutoff, s.max_speed_granular, s.front_x, d.x_deposit, d.L, d.L_d, d.L_h,
-                     d.A, d.A_d, d.A >= a_min ? d.A_d / d.A : kNaN});
+      deposit_->row({t, d.cutoff, s.max_speed_granular, u_ref_, s.front_x, d.x_deposit, d.L,
+                     d.L_d, d.L_h, d.A, d.A_d, d.A >= a_min ? d.A_d / d.A : kNaN});
     }
   }
   return s;

@@ -35,7 +35,12 @@
 //
 // Basal deposit and flowing layer (section 4.2.5, Figs. 22-27), for each cut-off c (a fraction):
 //   the deposit is the granular material whose speed is at most c U (the paper uses c = 7.5 %
-//   and 0.75 %: the speed, unlike |D u|, is smooth enough to separate the two layers).
+//   and 0.75 %: the speed, unlike |D u|, is smooth enough to separate the two layers). In a run
+//   (CollapseMonitor) U is the largest max_speed_granular of the outputs so far, not the current
+//   one: "the maximum velocity norm" of the paper is not more precise, and with the current
+//   maximum the threshold vanishes with the motion, so that at rest the split follows noise
+//   (case A at n = 32 after 0.7 s: A_d/A jumping between 0 and 0.8), whereas in the paper
+//   A_d/A rises to 1 as the motion stops (Fig. 27).
 //   y*_i, m: the lowest height in column i where the cell-centre speed s exceeds c U, linear
 //     between the centres j* - 1 and j*, j* the lowest cell with s > c U: 0 if j* = 0 (the
 //     bottom cell moves: no deposit under it), Ly if there is none.
@@ -140,7 +145,7 @@ Stages detect_stages(const std::vector<double>& t, const std::vector<double>& fr
 
 struct CollapseConfig {
   std::vector<double> cutoffs{0.075, 0.0075};
-  std::array<double, 2> slope_back_range{0.0, 0.1};   // m
+  std::array<double, 2> slope_back_range{0.05, 0.15};  // m
   std::array<double, 2> slope_front_range{0.2, 0.8};  // m
   double front_fit_length = 0.02;                     // m
   StageRule stages;
@@ -171,6 +176,7 @@ class CollapseMonitor {
   std::vector<double> t_, front_, umax_;
   std::vector<double> h_last_;
   double gate_ = 0, Hc_ = 0, max_p_ = 0;
+  double u_ref_ = 0;  // m/s, the largest max_speed_granular so far: the cut-offs' reference
   bool first_ = true;
   std::unique_ptr<io::CsvWriter> profiles_, structure_, deposit_;
 };
