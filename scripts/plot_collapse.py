@@ -210,7 +210,7 @@ def plot_front(run, others, ref, shift, figs):
                        label=f"experiment runout {ref['runout_exp']} m")
         if "runout_paper" in ref:
             ax.axhline(ref["runout_paper"], color="tab:blue", ls="--", lw=1.2,
-                       label=f"paper runout {ref['runout_paper']:.3g} m")
+                       label=f"paper runout {ref['runout_paper']:.4g} m")
         # Speed lines through granflow's front at the middle of its constant-speed phase:
         # compare slopes, not positions.
         if not (math.isnan(t1) or math.isnan(t2)):
@@ -274,7 +274,7 @@ def plot_profile(run, others, ref, figs):
                        label=f"experiment runout {ref['runout_exp']} m")
         if "runout_paper" in ref:
             ax.axvline(ref["runout_paper"], color="tab:blue", ls="--",
-                       label=f"paper runout {ref['runout_paper']:.3g} m")
+                       label=f"paper runout {ref['runout_paper']:.4g} m")
         if "backwall_paper" in ref:
             ax.plot([0, 0.03], [ref["backwall_paper"]] * 2, color="tab:red", lw=2,
                     label=f"paper back-wall height {ref['backwall_paper']} m")

@@ -265,9 +265,9 @@ Params case_params() {
   // Column-collapse measures (diagnostics/Collapse.hpp; profiles.csv, structure.csv,
   // deposit.csv and the collapse keys of summary.json). They read the state only.
   p.add_real_list("collapse.cutoffs", "", {0.075, 0.0075}, Range::open(0, 1),
-                  "Basal deposit of section 4.2.5: the granular material whose speed is below "
-                  "cutoff x (max granular |u|), one deposit per value (the paper uses 7.5 % and "
-                  "0.75 %).");
+                  "Basal deposit of section 4.2.5: the granular material whose speed is at most "
+                  "cutoff x (the largest max granular |u| of the run so far), one deposit per "
+                  "value (the paper uses 7.5 % and 0.75 %).");
   // Case A's deposit (our choice, the paper gives no slopes for it): a plateau on the back
   // wall to x ~ 0.04 m, then one slope to the gate and a flatter one beyond it.
   p.add_real2("collapse.slope_back_range", "m", {0.05, 0.15}, Range::ge(0),
