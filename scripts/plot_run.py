@@ -4,9 +4,12 @@
 usage: plot_run.py OUTDIR        (writes OUTDIR/figures/*.png)
 
 - diagnostics.png: granular volume change, max |u|, kinetic energy, max divergence against t;
-- front.png: for a run with a probe named "bottom" sampling phi along the bottom, the front
-  position (furthest x where phi < 0, linearly interpolated) against time, with the
-  shallow-water (Ritter) front x = x1 + 2 sqrt(g H) t as a reference bound, and front.csv.
+- front.png: for a two-phase run, the front position front_x of diagnostics.csv (the furthest
+  x where the granular phase touches the bottom, diagnostics/Collapse.hpp) against time, with
+  the shallow-water (Ritter) front x = x1 + 2 sqrt(g H) t as a reference bound;
+- for a run with profiles.csv (every two-phase run), the column-collapse figures of
+  scripts/plot_collapse.py (collapse_*.png), with the paper's numbers when the run is one of
+  its cases.
 """
 import csv
 import math
@@ -20,31 +23,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_collapse  # noqa: E402
+
 
 def read_csv(path):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]} if rows else {}
-
-
-def front_from_probe(path):
-    """Front position per output time from a probe block file: t,x,y,phi,..."""
-    d = read_csv(path)
-    fronts = []
-    for t in np.unique(d["t"]):
-        m = d["t"] == t
-        x, phi = d["x"][m], d["phi"][m]
-        inside = np.nonzero(phi < 0)[0]
-        if len(inside) == 0:
-            fronts.append((t, float("nan")))
-            continue
-        k = inside[-1]
-        if k + 1 < len(x) and phi[k + 1] >= 0:  # zero crossing between k and k+1
-            xf = x[k] + (x[k + 1] - x[k]) * (-phi[k]) / (phi[k + 1] - phi[k])
-        else:
-            xf = x[k]
-        fronts.append((t, xf))
-    return np.array(fronts)
 
 
 def main(out):
@@ -69,18 +55,14 @@ def main(out):
     fig.savefig(os.path.join(figs, "diagnostics.png"), dpi=120)
     plt.close(fig)
 
-    bottom = os.path.join(out, "probes", "bottom.csv")
-    if os.path.exists(bottom):
-        fr = front_from_probe(bottom)
-        np.savetxt(os.path.join(out, "front.csv"), fr, delimiter=",", header="t,front_x",
-                   comments="")
+    if "front_x" in d and os.path.exists(os.path.join(out, "profiles.csv")):
         fig, ax = plt.subplots(figsize=(7, 5))
-        ax.plot(fr[:, 0], fr[:, 1], "o-", ms=3, label="granflow")
+        ax.plot(d["t"], d["front_x"], "o-", ms=3, label="granflow")
         ini = case.get("initial", {})
         g = abs(case.get("physics", {}).get("gravity", [0, -9.81])[1])
         if "x1" in ini and "y1" in ini:
             x1, H = ini["x1"], ini["y1"] - ini.get("y0", 0.0)
-            t = np.linspace(0, fr[-1, 0], 50)
+            t = np.linspace(0, d["t"][-1], 50)
             ax.plot(t, x1 + 2 * math.sqrt(g * H) * t, "k--",
                     label=r"shallow water (Ritter): $x_1 + 2\sqrt{gH}\,t$")
         Lx = case.get("domain", {}).get("Lx")
@@ -95,6 +77,7 @@ def main(out):
         fig.tight_layout()
         fig.savefig(os.path.join(figs, "front.png"), dpi=120)
         plt.close(fig)
+        plot_collapse.main(out)
 
 
 if __name__ == "__main__":

@@ -421,10 +421,10 @@ def section_dambreak(out, build, tim):
         H = ini["y1"] - ini["y0"]
         g = abs(case["physics"]["gravity"][1])
         Lx = case["domain"]["Lx"]
-        fr = np.loadtxt(os.path.join(o, "front.csv"), delimiter=",", skiprows=1)
+        d = read_csv(os.path.join(o, "diagnostics.csv"))
+        fr = np.column_stack([d["t"], d["front_x"]])
         T = fr[:, 0] * math.sqrt(2 * g / a)
         Z = fr[:, 1] / a
-        d = read_csv(os.path.join(o, "diagnostics.csv"))
         js = json.load(open(os.path.join(o, "summary.json")))
         keep = T <= 4.0
         ax.plot(T[keep], Z[keep], style, ms=2.5, lw=1,
@@ -441,7 +441,7 @@ def section_dambreak(out, build, tim):
         extra = "" if n == 48 else " --set grid.n=96"
         cmds.append(f"`{build}/granflow run cases/dambreak_water.toml --out {o}{extra}` "
                     f"({fmt_s(tim[name]['wall_s'])}) then `/usr/bin/python3 scripts/plot_run.py "
-                    f"{o}` (writes `front.csv`, `figures/front.png`)")
+                    f"{o}` (writes `figures/front.png`)")
     # Ritter: x = a + 2 sqrt(g H) t  ->  Z = 1 + 2 sqrt(g H) sqrt(a / 2g) / a * T
     c = 2 * math.sqrt(g * H) * math.sqrt(a / (2 * g)) / a
     Tr = np.linspace(0, (Lx / a - 1) / c, 20)
@@ -455,13 +455,13 @@ def section_dambreak(out, build, tim):
     ax.set_ylim(0.8, Lx / a + 0.2)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
-    ax.set_title("Water dam break: front position (bottom probe, phi = 0)", fontsize=10)
+    ax.set_title("Water dam break: front position (front_x, phi = 0 on the bottom)", fontsize=10)
     fig.tight_layout()
     f = savefig(fig, "dambreak_front.png")
     ritter = [f"{(z - 1) / c:.2f}" for z in (2.0, 3.0, 3.9)]
-    md.append("Commands: " + "; ".join(cmds) + ". The front is the furthest zero of phi along "
-              "the probe `bottom` (y = 1 mm, below the first row of cell centres, so it holds "
-              "the values of that row); T = t sqrt(2g/a), Z = x/a. T(Z) is interpolated "
+    md.append("Commands: " + "; ".join(cmds) + ". The front is `front_x` of `diagnostics.csv`: "
+              "the furthest zero of phi extrapolated to the bottom from the first two rows of "
+              "cells (src/diagnostics/Collapse.hpp); T = t sqrt(2g/a), Z = x/a. T(Z) is interpolated "
               "linearly between output times (every 0.005 s). Volume change from "
               "`diagnostics.csv` (`volume_change_pct`, smoothed Heaviside; `max_speed`, all phases, "
               "air included), divergence and wall time from `summary.json`. The Ritter row "

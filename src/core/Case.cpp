@@ -89,7 +89,8 @@ bool CaseConfig::operator==(const CaseConfig& o) const {
   return title == o.title && domain == o.domain && nx == o.nx && ny == o.ny && hx == o.hx &&
          hy == o.hy && time == o.time && gravity == o.gravity && granular == o.granular &&
          air == o.air && rheology == o.rheology && levelset == o.levelset && initial == o.initial &&
-         flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && output == o.output && solver == o.solver &&
+         flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && output == o.output && collapse == o.collapse &&
+         solver == o.solver &&
          probes == o.probes;
 }
 
@@ -278,6 +279,35 @@ Params case_params() {
              "is a warning: printed once, and the rows counted in summary.json "
              "(warnings_volume_drift_rows).");
 
+  // Column-collapse measures (diagnostics/Collapse.hpp; profiles.csv, structure.csv,
+  // deposit.csv and the collapse keys of summary.json). They read the state only.
+  p.add_real_list("collapse.cutoffs", "", {0.075, 0.0075}, Range::open(0, 1),
+                  "Basal deposit of section 4.2.5: the granular material whose speed is at most "
+                  "cutoff x (the largest max granular |u| of the run so far), one deposit per "
+                  "value (the paper uses 7.5 % and 0.75 %).");
+  // Case A's deposit (our choice, the paper gives no slopes for it): a plateau on the back
+  // wall to x ~ 0.04 m, then one slope to the gate and a flatter one beyond it.
+  p.add_real2("collapse.slope_back_range", "m", {0.05, 0.15}, Range::ge(0),
+              "Final deposit: the back slope is the least-squares slope of h(x) over the "
+              "columns with x in this range (and x < front).");
+  p.add_real2("collapse.slope_front_range", "m", {0.2, 0.8}, Range::ge(0),
+              "Final deposit: the front slope is the least-squares slope of h(x) over the "
+              "columns with x in this range (and x < front).");
+  p.add_real("collapse.front_fit_length", "m", 0.02, Range::gt(0),
+             "Final deposit: the front angle is the least-squares slope of h(x) over the "
+             "columns within this distance behind the front.");
+  p.add_real("collapse.speed_window", "s", 0.05, Range::gt(0),
+             "Stages: the front speed at an output time is the least-squares slope of "
+             "front_x(t) over the outputs within +- half this window.");
+  p.add_real("collapse.plateau_fraction", "", 0.9, Range::open(0, 1),
+             "Stages: the constant-speed phase [t1, t2] is the run of outputs around the "
+             "fastest one whose front speed is >= this fraction of the largest.");
+  p.add_real("collapse.stop_distance", "m", 1e-3, Range::gt(0),
+             "Stages: t3 is the first output after which the front advances less than this.");
+  p.add_real("collapse.rest_speed", "m/s", 1e-3, Range::gt(0),
+             "Stages: tf is the first output from which the max granular |u| (outside the "
+             "smeared interface band) stays below this to the end of the run.");
+
   p.add_real("solver.pressure_rtol", "", 1e-10, Range::open(0, 1),
              "Relative residual tolerance of the pressure solve (eq. 32).");
   p.add_real("solver.viscous_rtol", "", 1e-10, Range::open(0, 1),
@@ -421,6 +451,16 @@ CaseConfig fill(const Params& p) {
   c.output.checkpoint_wall_s = p.get_real("output.checkpoint_wall_s");
   c.output.volume_warn_pct = p.get_real("output.volume_warn_pct");
 
+  auto& co = c.collapse;
+  co.cutoffs = p.get_real_list("collapse.cutoffs");
+  co.slope_back_range = p.get_real2("collapse.slope_back_range");
+  co.slope_front_range = p.get_real2("collapse.slope_front_range");
+  co.front_fit_length = p.get_real("collapse.front_fit_length");
+  co.speed_window = p.get_real("collapse.speed_window");
+  co.plateau_fraction = p.get_real("collapse.plateau_fraction");
+  co.stop_distance = p.get_real("collapse.stop_distance");
+  co.rest_speed = p.get_real("collapse.rest_speed");
+
   c.solver.pressure_rtol = p.get_real("solver.pressure_rtol");
   c.solver.viscous_rtol = p.get_real("solver.viscous_rtol");
   c.solver.petsc_options = p.get_string("solver.petsc_options");
@@ -464,6 +504,11 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
   if (ok({"grid.n", "grid.nx", "domain.Lx", "domain.Ly"}) && c.nx >= 8 &&
       std::abs(c.hx / c.hy - 1.0) > 0.01)
     c.warnings.push_back("cells are not square: hx = " + m(c.hx) + ", hy = " + m(c.hy));
+
+  // Collapse measures: a fit range must not be empty.
+  for (const char* key : {"collapse.slope_back_range", "collapse.slope_front_range"})
+    if (ok({key}) && p.get_real2(key)[0] >= p.get_real2(key)[1])
+      errors.add(p.where(key) + ": must be [lo, hi] with lo < hi (m)");
 
   // Time.
   if (ok({"time.dt_min", "time.dt_max"}) && c.time.dt_min >= c.time.dt_max)

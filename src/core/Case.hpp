@@ -120,6 +120,20 @@ struct CaseConfig {
     double volume_warn_pct = 0;               // %, granular volume drift counted as a warning
     bool operator==(const Output&) const = default;
   };
+  // The column-collapse measures of diagnostics/Collapse.hpp (section 4 of the paper): the
+  // deposit cut-offs of section 4.2.5 and the rules that read the final deposit and the four
+  // stages of the front from the output history.
+  struct Collapse {
+    std::vector<double> cutoffs;                 // -, fractions of the max granular |u|
+    std::array<double, 2> slope_back_range{};    // m, x range of the back slope fit
+    std::array<double, 2> slope_front_range{};   // m, x range of the front slope fit
+    double front_fit_length = 0;                 // m, behind the front: the front angle fit
+    double speed_window = 0;                     // s, width of the front speed fit
+    double plateau_fraction = 0;                 // -, of the max front speed: constant phase
+    double stop_distance = 0;                    // m, front moves less: stopped
+    double rest_speed = 0;                       // m/s, max granular |u| below: at rest
+    bool operator==(const Collapse&) const = default;
+  };
   struct Solver {
     double pressure_rtol = 0, viscous_rtol = 0;
     std::string petsc_options;  // applied before the command-line options
@@ -147,6 +161,7 @@ struct CaseConfig {
   std::array<WallConfig, 4> walls{};  // indexed by Side
   bool periodic_x = false;            // boundary.periodic_x: no left/right walls, x repeats
   Output output;
+  Collapse collapse;
   Solver solver;
   std::vector<Probe> probes;
 

@@ -112,6 +112,11 @@ std::string format_value(const ParamValue& v, bool toml) {
       for (const auto& s : x) q.push_back(quote(s));
       return "[" + join(q, ", ") + "]";
     }
+    std::string operator()(const std::vector<double>& x) const {
+      std::vector<std::string> q;
+      for (const double v : x) q.push_back((*this)(v));
+      return "[" + join(q, ", ") + "]";
+    }
   };
   return std::visit(Visitor{toml}, v);
 }
@@ -131,6 +136,8 @@ ParamValue zero_of(ParamType t) {
       return std::array<double, 2>{0.0, 0.0};
     case ParamType::StringList:
       return std::vector<std::string>();
+    case ParamType::RealList:
+      return std::vector<double>();
   }
   return 0.0;
 }
@@ -151,6 +158,8 @@ const char* type_name(ParamType t) {
       return "real[2]";
     case ParamType::StringList:
       return "string[]";
+    case ParamType::RealList:
+      return "real[]";
   }
   return "?";
 }
@@ -171,6 +180,8 @@ const char* expected_text(ParamType t) {
       return "an array of 2 numbers";
     case ParamType::StringList:
       return "an array of strings";
+    case ParamType::RealList:
+      return "an array of numbers";
   }
   return "?";
 }
@@ -182,7 +193,8 @@ std::string allowed_text(const ParamSpec& s) {
       const std::string r = s.range.describe();
       return r.empty() ? "any" : r;
     }
-    case ParamType::Real2: {
+    case ParamType::Real2:
+    case ParamType::RealList: {
       const std::string r = s.range.describe();
       return r.empty() ? "any" : "each " + r;
     }
@@ -370,6 +382,33 @@ std::optional<ParamValue> convert(const ParamSpec& s, const toml::node& n, std::
       }
       return x;
     }
+    case ParamType::RealList: {
+      const auto* a = n.as_array();
+      if (!a) return wrong_type();
+      std::vector<double> x;
+      for (std::size_t k = 0; k < a->size(); ++k) {
+        const toml::node& e = *a->get(k);
+        double v;
+        if (const auto* i = e.as_integer())
+          v = static_cast<double>(i->get());
+        else if (const auto* f = e.as_floating_point())
+          v = f->get();
+        else
+          return wrong_element(k, e);
+        why = check_range(s, v, "each element ");
+        if (!why.empty()) return std::nullopt;
+        if (std::find(x.begin(), x.end(), v) != x.end()) {
+          why = format_number(v) + " is listed twice";
+          return std::nullopt;
+        }
+        x.push_back(v);
+      }
+      if (x.empty()) {
+        why = "must list at least one number";
+        return std::nullopt;
+      }
+      return x;
+    }
   }
   return wrong_type();
 }
@@ -446,6 +485,8 @@ Params& Params::declare(ParamSpec spec) {
     if (const auto* x = std::get_if<long long>(&*spec.def)) ok = spec.range.contains(double(*x));
     if (const auto* x = std::get_if<std::array<double, 2>>(&*spec.def))
       ok = spec.range.contains((*x)[0]) && spec.range.contains((*x)[1]);
+    if (const auto* x = std::get_if<std::vector<double>>(&*spec.def))
+      for (const double v : *x) ok = ok && spec.range.contains(v);
     if (spec.type == ParamType::Enum)
       ok = std::find(spec.choices.begin(), spec.choices.end(), std::get<std::string>(*spec.def)) !=
            spec.choices.end();
@@ -499,6 +540,11 @@ Params& Params::add_real2(const std::string& key, const std::string& unit,
 Params& Params::add_string_list(const std::string& key, std::vector<std::string> def,
                                 std::vector<std::string> choices, const std::string& help) {
   return declare({key, ParamType::StringList, "", def, {}, std::move(choices), {}, "", help});
+}
+
+Params& Params::add_real_list(const std::string& key, const std::string& unit,
+                              std::vector<double> def, Range range, const std::string& help) {
+  return declare({key, ParamType::RealList, unit, std::move(def), range, {}, {}, "", help});
 }
 
 Params& Params::add_table_array(const std::string& name, Params item, const std::string& help) {
@@ -559,6 +605,10 @@ std::array<double, 2> Params::get_real2(const std::string& key) const {
 }
 const std::vector<std::string>& Params::get_string_list(const std::string& key) const {
   return get_as<std::vector<std::string>>(value_of(key), key);
+}
+
+const std::vector<double>& Params::get_real_list(const std::string& key) const {
+  return get_as<std::vector<double>>(value_of(key), key);
 }
 
 const std::vector<Params>& Params::items(const std::string& name) const {

@@ -43,13 +43,13 @@ class InputErrors {
   std::vector<std::string> messages_;
 };
 
-enum class ParamType { Real, Integer, Boolean, String, Enum, Real2, StringList };
+enum class ParamType { Real, Integer, Boolean, String, Enum, Real2, StringList, RealList };
 
 // Storage for every parameter type. Enum values are stored as their string.
 using ParamValue = std::variant<double, long long, bool, std::string, std::array<double, 2>,
-                                std::vector<std::string>>;
+                                std::vector<std::string>, std::vector<double>>;
 
-// Allowed interval of a number (of each component of a Real2). Ends may be open or closed.
+// Allowed interval of a number (of each component of a Real2 or element of a RealList). Ends may be open or closed.
 // `zero_ok` admits the sentinel 0 outside the interval, for keys where 0 means "automatic"
 // or "never" (grid.nx = 0 derives nx from the aspect ratio).
 struct Range {
@@ -104,7 +104,7 @@ struct ParamSpec {
   ParamType type = ParamType::Real;
   std::string unit;                  // SI, "" when dimensionless
   std::optional<ParamValue> def;     // nullopt: required (no sensible default)
-  Range range;                       // Real, Integer, Real2 (each component)
+  Range range;                       // Real, Integer, Real2, RealList (each component)
   std::vector<std::string> choices;  // Enum; StringList (each element)
   StringRule rule;                   // String (optional)
   std::string rule_text;             // what `rule` allows, for the help listing
@@ -128,6 +128,9 @@ class Params {
                     Range range, const std::string& help);
   Params& add_string_list(const std::string& key, std::vector<std::string> def,
                           std::vector<std::string> choices, const std::string& help);
+  // A non-empty list of numbers, each in `range`, no value twice (e.g. the deposit cut-offs).
+  Params& add_real_list(const std::string& key, const std::string& unit, std::vector<double> def,
+                        Range range, const std::string& help);
   // An array of tables `[[name]]`; each item is validated against `item` (relative keys).
   Params& add_table_array(const std::string& name, Params item, const std::string& help);
 
@@ -149,6 +152,7 @@ class Params {
   const std::string& get_string(const std::string& key) const;  // String and Enum
   std::array<double, 2> get_real2(const std::string& key) const;
   const std::vector<std::string>& get_string_list(const std::string& key) const;
+  const std::vector<double>& get_real_list(const std::string& key) const;
   // The loaded items of `[[name]]`, each a registry of the item keys.
   const std::vector<Params>& items(const std::string& name) const;
 

@@ -86,6 +86,16 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
     for (auto f : pr.fields) s.fields.emplace_back(to_string(f));
     r.probes.push_back(std::move(s));
   }
+  auto& co = r.collapse;
+  co.cutoffs = c.collapse.cutoffs;
+  co.slope_back_range = c.collapse.slope_back_range;
+  co.slope_front_range = c.collapse.slope_front_range;
+  co.front_fit_length = c.collapse.front_fit_length;
+  co.stages = {c.collapse.speed_window, c.collapse.plateau_fraction, c.collapse.stop_distance,
+               c.collapse.rest_speed};
+  co.rho_s = c.granular.rho;
+  co.gravity = std::hypot(c.gravity[0], c.gravity[1]);
+  co.eps = c.levelset.enabled ? c.levelset.eps_cells * std::max(c.hx, c.hy) : 0.0;  // as eq. 25
   r.out_dir = out_dir;
   r.title = c.title;
   return r;

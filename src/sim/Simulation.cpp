@@ -107,6 +107,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.mu_cap_max", lp_.mu_cap_max);
   h.set("loop.restarts", lp_.restarts);
   h.set("loop.max_fp_iters", lp_.max_fp_iters);
+  if (collapse_) collapse_->save(h);
   const StepStats& l = lp_.last;
   h.set("last.visc_its", l.visc_its);
   h.set("last.pres_its", l.pres_its);
@@ -185,6 +186,7 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   l.mu_i_cap_cells = h.get_int("last.mu_i_cap_cells");
   l.redistanced = h.get_int("last.redistanced") != 0;
   diag_bytes_ = h.get_int("files.diagnostics");
+  restart_header_ = h;  // the collapse monitor reads its history from it in run()
   // Probe files by name: the case comparison (apps/) has made sure the probes are the same.
   const long long np = h.get_int("files.probes");
   probe_bytes_.clear();
@@ -233,12 +235,22 @@ RunSummary Simulation::run() {
       "t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed", "granular_u",
       "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
       "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m", "bottom_slide_m",
-      "left_normal_N", "left_friction_N", "bottom_normal_N", "bottom_friction_N"};
+      "left_normal_N", "left_friction_N", "bottom_normal_N", "bottom_friction_N", "front_x",
+      "backwall_h", "max_p_granular", "max_speed_granular"};
   const std::string diag_path = rc_.out_dir + "/diagnostics.csv";
   io::CsvWriter csv = restarted_ ? io::CsvWriter(diag_path, columns, diag_bytes_, g_.comm())
                                  : io::CsvWriter(diag_path, columns, g_.comm());
   io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes, io::default_extra_cell_fields(),
                          restarted_ ? probe_bytes_ : std::vector<long long>{});
+  // Column-collapse measures and their files (profiles.csv, structure.csv, deposit.csv); a
+  // restart restores their history and continues the files from the checkpoint.
+  diag::CollapseMonitor collapse(g_, rc_.collapse, rc_.out_dir, cfg.levelset,
+                                 restarted_ ? &restart_header_ : nullptr);
+  collapse_ = &collapse;
+  struct Unset {
+    diag::CollapseMonitor*& p;
+    ~Unset() { p = nullptr; }
+  } unset_collapse{collapse_};
   Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
       yielded(g_.dm_cell(), "yielded");
   std::unique_ptr<io::VtkSeries> vtk;
@@ -280,11 +292,13 @@ RunSummary Simulation::run() {
     const auto wc = stepper_.wall_contact(s_);
     const auto &stick = wc.stick_m, &slide = wc.slide_m;
     const StepStats& last = lp_.last;
+    const auto col = collapse.sample(s_.t, s_.phi, s_.vel, s_.p);
     csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
              diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
              static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
              static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
-             slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2]});
+             slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2],
+             col.front_x, col.backwall_h, col.max_p_granular, col.max_speed_granular});
     // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
     io::NamedCellFields extra;
     if (probes.samples("D_norm") || probes.samples("S_norm")) {
@@ -345,6 +359,7 @@ RunSummary Simulation::run() {
         .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
         .set("mu_i_floor_cells_max", lp_.mu_floor_max)
         .set("mu_i_cap_cells_max", lp_.mu_cap_max);
+    collapse.summarize(js);
     {
       // Time by phase (core/Profile.hpp), the largest over the ranks, s: for this process, i.e.
       // since the start or the last restart. Peak resident memory, MiB: largest rank, all ranks.

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "diagnostics/Collapse.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
 #include "io/Checkpoint.hpp"
@@ -46,6 +47,7 @@ struct RunConfig {
   double checkpoint_wall_s = 0;             // s of wall clock, 0 = none
   double volume_warn_pct = 1.0;  // %: |granular volume change| above this counts as a warning
   std::vector<io::ProbeSpec> probes;
+  diag::CollapseConfig collapse;  // front, profile, deposit measures (diagnostics/Collapse.hpp)
   std::string out_dir;
   std::string title;
 };
@@ -111,6 +113,8 @@ class Simulation {
   const io::CsvWriter* csv_ = nullptr;
   const io::ProbeWriter* probes_ = nullptr;
   const io::VtkSeries* vtk_ = nullptr;
+  diag::CollapseMonitor* collapse_ = nullptr;
+  io::CheckpointHeader restart_header_;  // of the checkpoint restart() loaded
   long long last_ckpt_step_ = -1;  // step and time of the last checkpoint written or loaded
   double last_ckpt_t_ = 0;
   double seg_t0_ = 0;  // wall clock at the start of run(), s

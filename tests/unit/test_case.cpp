@@ -282,6 +282,17 @@ std::vector<BadCase> bad_cases() {
        {"rheology.yield=hp", "physics.gravity=[9.81, 0]"},
        {"--set: physics.gravity = [9.81, 0]: rheology.yield = \"hp\" weighs the granular "
         "column above the point (eq. 15): needs gravity pointing down, gy < 0"}},
+      {"collapse_cutoff_out_of_range",
+       "",
+       {"collapse.cutoffs=[0.075, 1.5]"},
+       {"--set: collapse.cutoffs = [0.075, 1.5]: each element must be in (0, 1)"}},
+      {"collapse_cutoff_twice", "", {"collapse.cutoffs=[0.1, 0.1]"}, {"0.1 is listed twice"}},
+      {"collapse_cutoff_empty", "", {"collapse.cutoffs=[]"}, {"must list at least one number"}},
+      {"collapse_cutoff_not_a_number", "", {"collapse.cutoffs=[\"a\"]"}, {"collapse.cutoffs"}},
+      {"collapse_slope_range_reversed",
+       "",
+       {"collapse.slope_back_range=[0.3, 0.1]"},
+       {"collapse.slope_back_range = [0.3, 0.1]: must be [lo, hi] with lo < hi (m)"}},
       {"mu_i_eta_bounds",
        "",
        {"rheology.yield=dp", "rheology.viscosity=mu_i", "rheology.d=5e-4", "rheology.eta_min=2"},
@@ -561,6 +572,19 @@ TEST(CaseFile, OverridesReplaceFileValuesAndTakeBareStrings) {
   EXPECT_EQ(c.time.dt_mode, gf::CaseConfig::DtMode::Fixed);
   // A later --set of the same key wins.
   EXPECT_EQ(load_case(path, {"phase.granular.rho=1", "phase.granular.rho=3"}).granular.rho, 3);
+}
+
+TEST(CaseFile, CollapseCutoffsAreAListOfNumbers) {
+  const std::string path = write_file("cut.toml", "[collapse]\ncutoffs = [0.1, 0.01, 1e-3]\n");
+  const auto c = load_case(path, {});
+  EXPECT_EQ(c.collapse.cutoffs, (std::vector<double>{0.1, 0.01, 1e-3}));
+  // Integers are numbers too, and --set replaces the whole list.
+  EXPECT_EQ(load_case(path, {"collapse.cutoffs=[0.5]"}).collapse.cutoffs, std::vector<double>{0.5});
+  EXPECT_NE(c.resolved_toml.find("cutoffs = [0.1, 0.01, 0.001]"), std::string::npos)
+      << c.resolved_toml;
+  // The defaults are the paper's 7.5 % and 0.75 % (section 4.2.5).
+  EXPECT_EQ(load_case(write_file("nocut.toml", ""), {}).collapse.cutoffs,
+            (std::vector<double>{0.075, 0.0075}));
 }
 
 TEST(CaseFile, ResolvedCaseRoundTrips) {

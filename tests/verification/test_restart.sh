@@ -5,7 +5,9 @@
 #     killed with SIGTERM after its first checkpoint (every 20 steps), then continued with
 #     `granflow run --restart`. The killed run must exit 6 saying how to restart; the
 #     continued run must reproduce the uninterrupted one byte for byte (1 rank):
-#     diagnostics.csv, probes/bottom.csv and a VTK file written after the restart; fields.pvd
+#     diagnostics.csv, probes/bottom.csv, a VTK file written after the restart, the collapse
+#     files (profiles.csv, structure.csv, deposit.csv) and the collapse keys of summary.json
+#     (stage times from the whole history, restored from the checkpoint); fields.pvd
 #     must be valid XML listing every .vtr, the same list as the uninterrupted run's.
 #  2. 1 -> 2 ranks: the water dam break (Newtonian: 1 and 2 ranks agree to ~1e-12, see
 #     test_mpi_consistency.sh) stopped at time.max_steps = 40 on 1 rank and continued on
@@ -69,10 +71,21 @@ grep -q "stopped by SIGTERM" "$tmp/sig/granflow.log" || bad "granflow.log lacks 
 rc=$(run_rc "$tmp/re.log" "$bin" run --restart "$tmp/sig")
 [[ $rc == 0 ]] || { cat "$tmp/re.log"; bad "restart exited $rc"; }
 echo "case A killed + restarted: $((SECONDS - start)) s"
-for f in diagnostics.csv probes/bottom.csv fields_000005.vtr fields.pvd; do
+for f in diagnostics.csv probes/bottom.csv fields_000005.vtr fields.pvd profiles.csv structure.csv deposit.csv; do
   if cmp -s "$tmp/full/$f" "$tmp/sig/$f"; then ok "1 rank, SIGTERM + restart: $f identical to the uninterrupted run"
   else bad "1 rank, SIGTERM + restart: $f differs from the uninterrupted run"; cmp "$tmp/full/$f" "$tmp/sig/$f"; fi
 done
+if "$py" - "$tmp/full/summary.json" "$tmp/sig/summary.json" <<'PY'
+import json, math, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+keys = ["runout_m", "max_front_x_m", "backwall_height_m", "front_speed_mps", "t1_s", "t2_s",
+        "t3_s", "tf_s", "max_p_granular_pa", "slope_back_deg", "slope_front_deg", "front_angle_deg"]
+diff = [k for k in keys if k not in a or not (a[k] == b.get(k) or (a[k] is None and b.get(k) is None))]
+print("collapse keys differing after the restart:", diff or "none")
+sys.exit(1 if diff else 0)
+PY
+then ok "1 rank, SIGTERM + restart: the collapse keys of summary.json are the uninterrupted run's"
+else bad "1 rank, SIGTERM + restart: collapse keys of summary.json differ"; fi
 "$py" "$check" pvd "$tmp/sig/fields.pvd" --count 7 --same-as "$tmp/full/fields.pvd" || bad "fields.pvd after the restart"
 grep -q '"restarts": 1' "$tmp/sig/summary.json" || bad "summary.json does not count the restart"
 grep -q '^restart$' "$tmp/sig/command.txt" || bad "command.txt does not record the restart"
