@@ -81,6 +81,32 @@ double update_plastic(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec kappa
   return g.max(change);
 }
 
+void neighbourhood_min(const Grid& g, Vec in, Vec out) {
+  const Box& b = g.box();
+  Vec loc;
+  GF_PETSC(DMGetLocalVector(g.dm_cell(), &loc));
+  GF_PETSC(DMGlobalToLocalBegin(g.dm_cell(), in, INSERT_VALUES, loc));
+  GF_PETSC(DMGlobalToLocalEnd(g.dm_cell(), in, INSERT_VALUES, loc));
+  const PetscScalar** a;
+  PetscScalar** o;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), loc, &a));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), out, &o));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      double m = a[j][i];
+      for (PetscInt dj = -1; dj <= 1; ++dj)
+        for (PetscInt di = -1; di <= 1; ++di) {
+          const PetscInt jj = j + dj, ii = i + di;
+          if (jj < 0 || jj >= b.ny || !b.has_cell_x(ii)) continue;  // beyond a wall
+          m = std::min(m, static_cast<double>(a[jj][ii]));
+        }
+      o[j][i] = m;
+    }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), out, &o));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), loc, &a));
+  GF_PETSC(DMRestoreLocalVector(g.dm_cell(), &loc));
+}
+
 void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Vec kappa) {
   const Box& b = g.box();
   const PetscScalar **ph, **pa, **ph_hyd = nullptr;

@@ -64,6 +64,15 @@ inline double r_local(const Params& pr, double kappa, double eta, double rho_a0_
   return kappa > 0 ? pr.r_factor * (2.0 * eta + rho_a0_h2_dt) / (kappa * kappa) : 0.0;
 }
 
+// out = the minimum of `in` over each cell and its 8 neighbours (those inside the domain; across
+// a periodic x seam too). The stress kappa S of a cell acts, through the faces and nodes around
+// it, on faces whose density and viscosity are those of its neighbours: at the interface those
+// are the air's, 1000 times lighter, and an r built from the cell's own rho makes the cell's S
+// overshoot and flip sign from one iteration to the next (measured with levelset.eps_cells = 1:
+// 2/3 of the case A steps and the Coulomb block's fixed point stuck at a change of 2). r takes
+// the lightest, most compliant neighbour instead. Both on dm_cell; collective.
+void neighbourhood_min(const Grid& g, Vec in, Vec out);
+
 // p_hyd of eq. 15 at the cell centres: rho_s |g_y| times the granular thickness above the point
 // in its column, int_y^{Ly} c(x, s) ds, with c the granular fraction (1 - H_eps(phi)) of the
 // cells, so that where the column is all granular below its top, p_hyd = rho_s |g| (top - y).

@@ -41,7 +41,8 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &gW_));
   if (plastic_ && m > 0) anderson_ = std::make_unique<Anderson>(std::vector<Vec>{gS_, gW_}, m);
   if (fp_monitor_) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs0_mon_));
-  for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_}) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
+  for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_, &rho_r_, &eta_r_})
+    GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
   for (Vec* v : {&D_, &S_n_}) GF_PETSC(DMCreateGlobalVector(g.dm_ten(), v));
   for (Vec* v : {&kappa_b_, &sw_n_, &rhs0_}) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), v));
   GF_PETSC(VecSet(kappa_, 0.0));
@@ -54,7 +55,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
 
 Stepper::~Stepper() {
   for (Vec* v : {&eta_node_, &rhs_, &u_tilde_, &lphi_, &kappa_, &kappa_b_, &D_, &S_n_, &sw_n_,
-                 &rhs0_, &p_hyd_, &gran_, &eta_s_, &rhs0_mon_, &gS_, &gW_})
+                 &rhs0_, &p_hyd_, &gran_, &eta_s_, &rhs0_mon_, &gS_, &gW_, &rho_r_, &eta_r_})
     VecDestroy(v);
 }
 
@@ -64,6 +65,10 @@ void Stepper::update_properties(State& s) {
     GF_PETSC(VecSet(s.eta, cfg_.eta_gran));
     GF_PETSC(VecSet(eta_node_, cfg_.eta_gran));
     if (cfg_.rheo.viscosity == rheology::Viscosity::MuI && predictor_) mu_i_viscosity(s);
+    if (plastic_) {
+      rheology::neighbourhood_min(g_, s.rho, rho_r_);
+      rheology::neighbourhood_min(g_, s.eta, eta_r_);
+    }
     return;
   }
   const levelset::Props pr{cfg_.rho_air, cfg_.rho_gran, cfg_.eta_air, cfg_.eta_gran, cfg_.eps};
@@ -85,6 +90,10 @@ void Stepper::update_properties(State& s) {
   GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), eta_node_, &en));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &phi));
   if (cfg_.rheo.viscosity == rheology::Viscosity::MuI && predictor_) mu_i_viscosity(s);
+  if (plastic_) {
+    rheology::neighbourhood_min(g_, s.rho, rho_r_);
+    rheology::neighbourhood_min(g_, s.eta, eta_r_);
+  }
 }
 
 // The mu(I) viscosity of eq. 11 from |D(u^n)| and p^n (explicit in the step, so that the
@@ -326,7 +335,7 @@ StepStats Stepper::step(State& s, double dt) {
         // G(x): the projections of eq. 31 applied to the current iterate x = (S, s_t).
         GF_PETSC(VecCopy(s.S, gS_));
         GF_PETSC(VecCopy(s.s_wall, gW_));
-        ch = rheology::update_plastic(g_, cfg_.rheo, gS_, S_n_, kappa_, D_, s.rho, s.eta,
+        ch = rheology::update_plastic(g_, cfg_.rheo, gS_, S_n_, kappa_, D_, rho_r_, eta_r_,
                                              c.a0 / dt, theta);
         if (predictor_->has_wall_friction()) {
           predictor_->wall_yield(s.p, gS_, kappa_, D_, s.eta, kappa_b_);

@@ -102,6 +102,9 @@ class Stepper {
   std::unique_ptr<class Anderson> anderson_;  // a yield stress or wall friction: the fixed point of eq. 31 runs
   Vec kappa_ = nullptr, kappa_b_ = nullptr, D_ = nullptr, S_n_ = nullptr, sw_n_ = nullptr,
       rhs0_ = nullptr, p_hyd_ = nullptr, gran_ = nullptr, eta_s_ = nullptr;
+  // rho and eta for the augmentation r of the cell projection: their minimum over the cell and
+  // its 8 neighbours (rheology::neighbourhood_min), refreshed with the properties.
+  Vec rho_r_ = nullptr, eta_r_ = nullptr;
   void update_yield(State& s);
   void mu_i_viscosity(State& s);
   Vec eta_node_ = nullptr, rhs_ = nullptr, u_tilde_ = nullptr, lphi_ = nullptr;
