@@ -180,6 +180,11 @@ Params case_params() {
              "iteration is below this.");
   p.add_int("rheology.fp_max_iter", "", 50, closed(1, 1e6),
             "Fixed point of eq. 31: most iterations per time step.");
+  p.add_real("rheology.fp_fail_change", "", 0.1, Range::gt(0),
+             "Fixed point of eq. 31: a step that reaches fp_max_iter with its last change still "
+             "above this has not converged (S or s_t oscillates; a sign flip is a change of 2) "
+             "and stops the run as failed; below it, a step at the cap is a counted warning "
+             "(case A's capped steps end at changes of 2e-3 or less).");
 
   p.add_bool("levelset.enabled", true,
              "Two phases separated by the level set phi (< 0 granular, > 0 air). false: a "
@@ -405,6 +410,7 @@ CaseConfig fill(const Params& p) {
   rh.theta_per_dt = p.get_real("rheology.theta_per_dt");
   rh.fp_tol = p.get_real("rheology.fp_tol");
   rh.fp_max_iter = static_cast<int>(p.get_int("rheology.fp_max_iter"));
+  rh.fp_fail_change = p.get_real("rheology.fp_fail_change");
 
   c.levelset.enabled = p.get_bool("levelset.enabled");
   c.levelset.eps_cells = p.get_real("levelset.eps_cells");
@@ -924,7 +930,8 @@ const std::vector<std::string>& restart_changeable_keys() {
       "time.dt",             "time.cfl",       "time.dt_max",
       "time.dt_min",         "time.max_speed", "output.progress_interval",
       "output.checkpoint_interval_steps",      "output.checkpoint_wall_s",
-      "output.volume_warn_pct",                "solver.petsc_options"};
+      "output.volume_warn_pct",                "solver.petsc_options",
+      "rheology.fp_fail_change"};
   return keys;
 }
 

@@ -78,6 +78,7 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
   r.checkpoint_interval_steps = c.output.checkpoint_interval_steps;
   r.checkpoint_wall_s = c.output.checkpoint_wall_s;
   r.volume_warn_pct = c.output.volume_warn_pct;
+  r.fp_fail_change = c.rheology.fp_fail_change;
   r.output_interval = c.output.interval;
   r.vtk_interval = c.output.vtk_interval;
   r.progress_interval = c.output.progress_interval;

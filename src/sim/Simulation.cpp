@@ -466,6 +466,13 @@ RunSummary Simulation::run() {
              " s): the run blew up; try a smaller time step (time.cfl, time.dt_max, or time.dt "
              "with time.dt_mode = fixed)");
     }
+    if (last.fp_capped && last.fp_change > rc_.fp_fail_change)
+      fail("the fixed point of eq. 31 did not converge: after rheology.fp_max_iter = " +
+           std::to_string(last.fp_iters) + " iterations its change is " + num(last.fp_change) +
+           " (above rheology.fp_fail_change = " + num(rc_.fp_fail_change) + "; a sign flip of S "
+           "or s_t is a change of 2), at " + when() + " (dt = " + num(dt) +
+           " s): try a smaller rheology.r_factor (the augmentation), a smaller time step, or "
+           "a wider interface (levelset.eps_cells); -fp_monitor prints every iteration");
     const diag::SpeedAt sp = diag::max_speed_at(g_, s_.vel);
     umax = sp.speed;
     if (umax > rc_.max_speed)

@@ -46,6 +46,7 @@ struct RunConfig {
   long long checkpoint_interval_steps = 0;  // steps, 0 = none (besides the end and signals)
   double checkpoint_wall_s = 0;             // s of wall clock, 0 = none
   double volume_warn_pct = 1.0;  // %: |granular volume change| above this counts as a warning
+  double fp_fail_change = 0.1;   // -: a fixed point at its cap with a larger last change fails
   std::vector<io::ProbeSpec> probes;
   diag::CollapseConfig collapse;  // front, profile, deposit measures (diagnostics/Collapse.hpp)
   std::string out_dir;

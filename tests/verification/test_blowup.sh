@@ -82,6 +82,20 @@ done
 if [[ -n "$msg" ]]; then bad "KSP cap:$msg"; sed 's/^/      | /' "$tmp/ksp.log"
 else ok "KSP at its cap: exit 4: $(grep -o 'the run failed: .*' "$tmp/ksp.log" | cut -c1-120)"; fi
 
+# --- 4. a fixed point of eq. 31 that does not converge (over-augmented: r_factor = 4 makes S
+#        flip sign from one iteration to the next) stops the run; a converging one at its cap
+#        is only a counted warning (the default case A run above is one).
+rc=0
+"$bin" run "$src/cases/ar07_rough.toml" --set grid.n=16 --set time.t_end=0.05 \
+  --set rheology.r_factor=4 --set output.vtk_interval=0 --out "$tmp/fp" > "$tmp/fp.log" 2>&1 || rc=$?
+msg=""
+[[ $rc == 4 ]] || msg+=" exit $rc (expected 4);"
+for p in "the fixed point of eq. 31 did not converge" "rheology.fp_fail_change" "step 1"; do
+  grep -qF -- "$p" "$tmp/fp.log" || msg+=" message lacks '$p';"
+done
+if [[ -n "$msg" ]]; then bad "fixed point not converging:$msg"; sed 's/^/      | /' "$tmp/fp.log"
+else ok "fixed point not converging: exit 4: $(grep -o 'the run failed: .*' "$tmp/fp.log" | cut -c1-120)"; fi
+
 echo "time: $((SECONDS - start)) s"
 if ((fails)); then echo "$fails check(s) failed"; exit 1; fi
 echo "all failure-handling checks passed"
