@@ -180,11 +180,11 @@ Params case_params() {
              "iteration is below this.");
   p.add_int("rheology.fp_max_iter", "", 50, closed(1, 1e6),
             "Fixed point of eq. 31: most iterations per time step.");
-  p.add_real("rheology.fp_fail_change", "", 0.1, Range::gt(0),
+  p.add_real("rheology.fp_fail_change", "", 1.0, Range::gt(0),
              "Fixed point of eq. 31: a step that reaches fp_max_iter with its last change still "
              "above this has not converged (S or s_t oscillates; a sign flip is a change of 2) "
              "and stops the run as failed; below it, a step at the cap is a counted warning "
-             "(case A's capped steps end at changes of 2e-3 or less).");
+             "(case A at n = 32: 75 capped steps of 1060, the largest last change 0.12).");
 
   p.add_bool("levelset.enabled", true,
              "Two phases separated by the level set phi (< 0 granular, > 0 air). false: a "

@@ -107,7 +107,7 @@ struct CaseConfig {
     double theta_per_dt = 0;  // 1/s, theta = min(theta_per_dt dt, 0.5)
     double fp_tol = 0;        // -, on the max change of S and s_t in one iteration
     int fp_max_iter = 0;
-    double fp_fail_change = 0.1;  // -, a capped step ending above this change is a failure
+    double fp_fail_change = 1.0;  // -, a capped step ending above this change is a failure
     // mu_s = tan(alpha).
     double tan_alpha() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
     bool operator==(const Rheology&) const = default;

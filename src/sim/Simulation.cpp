@@ -102,6 +102,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.volume_change_pct", lp_.volume_change_pct);
   h.set("loop.wall_s", lp_.wall_s + (wall_now() - seg_t0_));
   h.set("loop.fp_capped_steps", lp_.fp_capped_steps);
+  h.set("loop.fp_capped_change", lp_.fp_capped_change);
   h.set("loop.volume_warn_rows", lp_.volume_warn_rows);
   h.set("loop.mu_floor_max", lp_.mu_floor_max);
   h.set("loop.mu_cap_max", lp_.mu_cap_max);
@@ -171,6 +172,7 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   lp_.volume_change_pct = h.get_double("loop.volume_change_pct");
   lp_.wall_s = h.get_double("loop.wall_s");
   lp_.fp_capped_steps = h.get_int("loop.fp_capped_steps");
+  lp_.fp_capped_change = h.get_double("loop.fp_capped_change");
   lp_.volume_warn_rows = h.get_int("loop.volume_warn_rows");
   lp_.mu_floor_max = h.get_int("loop.mu_floor_max");
   lp_.mu_cap_max = h.get_int("loop.mu_cap_max");
@@ -356,6 +358,7 @@ RunSummary Simulation::run() {
         .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho))
         .set("max_fp_iters", static_cast<long long>(lp_.max_fp_iters))
         .set("warnings_fp_capped_steps", lp_.fp_capped_steps)
+        .set("fp_capped_max_change", lp_.fp_capped_change)
         .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
         .set("mu_i_floor_cells_max", lp_.mu_floor_max)
         .set("mu_i_cap_cells_max", lp_.mu_cap_max);
@@ -448,7 +451,10 @@ RunSummary Simulation::run() {
            std::to_string(s_.step + 1) + ", dt = " + num(dt) + " s)");
     }
     const StepStats& last = lp_.last;
-    if (last.fp_capped) ++lp_.fp_capped_steps;
+    if (last.fp_capped) {
+      ++lp_.fp_capped_steps;
+      lp_.fp_capped_change = std::max(lp_.fp_capped_change, last.fp_change);
+    }
     lp_.mu_floor_max = std::max(lp_.mu_floor_max, last.mu_i_floor_cells);
     lp_.mu_cap_max = std::max(lp_.mu_cap_max, last.mu_i_cap_cells);
     lp_.max_fp_iters = std::max(lp_.max_fp_iters, last.fp_iters);

@@ -46,7 +46,7 @@ struct RunConfig {
   long long checkpoint_interval_steps = 0;  // steps, 0 = none (besides the end and signals)
   double checkpoint_wall_s = 0;             // s of wall clock, 0 = none
   double volume_warn_pct = 1.0;  // %: |granular volume change| above this counts as a warning
-  double fp_fail_change = 0.1;   // -: a fixed point at its cap with a larger last change fails
+  double fp_fail_change = 1.0;   // -: a fixed point at its cap with a larger last change fails
   std::vector<io::ProbeSpec> probes;
   diag::CollapseConfig collapse;  // front, profile, deposit measures (diagnostics/Collapse.hpp)
   std::string out_dir;
@@ -90,6 +90,7 @@ class Simulation {
     double volume_change_pct = 0;    // %, of the last diagnostics row
     double wall_s = 0;               // s of wall clock of the runs before this one
     long long fp_capped_steps = 0;   // steps whose fixed point stopped at its cap (a warning)
+    double fp_capped_change = 0;     // the largest last change of those steps
     long long volume_warn_rows = 0;  // diagnostics rows with |volume change| > volume_warn_pct
     long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
     long long restarts = 0;

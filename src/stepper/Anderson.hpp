@@ -35,6 +35,11 @@ class Anderson {
   std::vector<Vec> f_prev_, g_prev_, f_cur_;
   std::vector<Vec*> dF_, dG_;  // per block: m Vecs each (VecDuplicateVecs)
   bool have_prev_ = false;
+  // The Gram matrix dF_i . dF_j of the stored differences (m x m, slots of the ring buffer),
+  // kept up to date: a new difference costs its m dot products, not all m^2 again, and all dot
+  // products of an update go through one MPI reduction.
+  std::vector<double> gram_;
+  MPI_Comm comm_ = MPI_COMM_NULL;
 };
 
 }  // namespace gf
