@@ -30,6 +30,7 @@ const std::vector<std::string> kProbeFields{"phi", "rho",    "u",      "v",     
                                             "p",   "eta",    "D_norm", "S_norm", "kappa"};
 const std::vector<std::string> kSides{"left", "right", "bottom", "top"};
 const std::vector<std::string> kYields{"none", "bingham", "dp", "hp"};
+const std::vector<std::string> kPlasticGrids{"cell", "cell_node"};
 const std::vector<std::string> kViscosities{"constant", "mu_i"};
 
 // Counts are stored as int; these bounds keep them (and nx * ny) far from overflow.
@@ -172,6 +173,13 @@ Params case_params() {
              "+ rho a0 h^2/dt) / kappa^2, a local choice; any r > 0 has the same fixed point, "
              "r_factor only changes how fast it is reached (1 oscillates on case A, 0.5 "
              "converges).");
+  p.add_enum("rheology.plastic_grid", "cell", kPlasticGrids,
+             "Where the plastic tensor S lives: cell = at the cell centres only, the shear rate "
+             "there the mean of the four node shear rates (the paper, section 3.4); cell_node = "
+             "a copy at the cell centres and one at the nodes, each carrying half of the plastic "
+             "stress, so that the node shear rates and the cell normal rates are both seen "
+             "exactly: the cell-only strain rate has near-null modes (u alternating row by row) "
+             "that the yield stress cannot stop (docs/RHEOLOGY.md, cessation).");
   p.add_real("rheology.theta_per_dt", "1/s", 10.0, Range::gt(0),
              "Fixed point of eq. 31: pseudo-relaxation theta = theta_per_dt dt (theta = 10 dt "
              "in section 4.1.3), capped at 0.5.");
@@ -408,6 +416,7 @@ CaseConfig fill(const Params& p) {
   rh.eta_max = p.get_real("rheology.eta_max");
   rh.r_factor = p.get_real("rheology.r_factor");
   rh.theta_per_dt = p.get_real("rheology.theta_per_dt");
+  rh.node_copy = p.get_string("rheology.plastic_grid") == "cell_node";
   rh.fp_tol = p.get_real("rheology.fp_tol");
   rh.fp_max_iter = static_cast<int>(p.get_int("rheology.fp_max_iter"));
   rh.fp_fail_change = p.get_real("rheology.fp_fail_change");
@@ -774,6 +783,7 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
           unused_keys.push_back({k, "rheology.viscosity = constant"});
       if (rh.yield == Yield::None)
         for (const char* k : {"rheology.r_factor", "rheology.theta_per_dt", "rheology.fp_tol",
+                              "rheology.plastic_grid",
                               "rheology.fp_max_iter"})
           unused_keys.push_back({k, y + " (no plastic fixed point)"});
       for (const auto& [k, why] : unused_keys)
@@ -1085,7 +1095,8 @@ std::string rheology_text(const CaseConfig& c, double dt) {
        << g4(rh.theta_per_dt) << " /s x " << g4(dt)
        << " s = " << (theta > 0.5 ? g4(theta) + ", capped at 0.5" : g4(theta))
        << "\n           r_factor = " << g4(rh.r_factor) << ", stop at a change < " << g4(rh.fp_tol)
-       << " or after " << rh.fp_max_iter << " iterations\n";
+       << " or after " << rh.fp_max_iter << " iterations\n"
+       << "           plastic tensor S at the " << (rh.node_copy ? "cell centres and the nodes (half each)" : "cell centres") << "\n";
   }
   std::string friction;
   for (std::size_t k = 0; k < c.walls.size(); ++k)

@@ -105,6 +105,7 @@ struct CaseConfig {
     // Fixed point of eq. 31.
     double r_factor = 0;      // -, r = r_factor (2 eta + rho a0 h^2/dt) / kappa^2
     double theta_per_dt = 0;  // 1/s, theta = min(theta_per_dt dt, 0.5)
+    bool node_copy = false;   // rheology.plastic_grid = "cell_node": S also at the nodes
     double fp_tol = 0;        // -, on the max change of S and s_t in one iteration
     int fp_max_iter = 0;
     double fp_fail_change = 1.0;  // -, a capped step ending above this change is a failure

@@ -29,6 +29,7 @@ State::State(const Grid& g)
       vel_old(g.dm_vel(), "velocity_old"),
       p(g.dm_cell(), "p"),
       S(g.dm_ten(), "S"),
+      S_node(g.dm_node(), "S_node"),
       s_wall(g.dm_vel(), "s_wall"),
       rho(g.dm_cell(), "rho"),
       eta(g.dm_cell(), "eta") {}

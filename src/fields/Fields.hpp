@@ -32,6 +32,7 @@ struct State {
   Field vel_old;  // dm_vel, m/s, u^{n-1}
   Field p;        // dm_cell, Pa
   Field S;        // dm_ten, dimensionless (Sxx, Sxy, Syy), |S| <= 1 (eq. 29)
+  Field S_node;   // dm_node, the node copy of S (rheology.plastic_grid = "cell_node"), else 0
   Field s_wall;   // dm_vel, dimensionless, |s_t| <= 1: Coulomb wall stress direction (eq. 30),
                   // stored on the wall faces (momentum/Momentum.hpp, wall storage)
   // Derived from phi (refreshed by the stepper): density and viscosity at cell centres.

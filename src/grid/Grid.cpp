@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/Error.hpp"
 
@@ -45,6 +46,17 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool p
   make(3, DMDA_STENCIL_BOX, 1, &dm_ten_);
   make(1, DMDA_STENCIL_STAR, 1, &dm_pres_);
   make(2, DMDA_STENCIL_BOX, 1, &dm_visc_);
+  // Nodes (cell corners) 0..nx x 0..ny (0..nx-1 in x when periodic: node nx is node 0): the
+  // node copy of the plastic tensor (rheology.plastic_grid = "cell_node"). Node (i, j) is owned
+  // by the rank that owns cell (i, j); the last rank of a row/column also owns the wall nodes.
+  {
+    std::vector<PetscInt> nlx(lx, lx + px), nly(ly, ly + py);
+    if (!periodic_x) nlx.back() += 1;
+    nly.back() += 1;
+    GF_PETSC(DMDACreate2d(comm, bx, bt, DMDA_STENCIL_BOX, periodic_x ? nx : nx + 1, ny + 1, px, py,
+                          3, 1, nlx.data(), nly.data(), &dm_node_));
+    GF_PETSC(DMSetUp(dm_node_));
+  }
   // Cell centres. A periodic DMDA spaces its coordinates by (xmax - xmin)/nx, not /(nx - 1).
   GF_PETSC(DMDASetUniformCoordinates(dm_cell_, 0.5 * box_.hx,
                                      periodic_x ? Lx + 0.5 * box_.hx : Lx - 0.5 * box_.hx,
@@ -56,6 +68,7 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool p
 Grid::~Grid() {
   if (comm_column_ != MPI_COMM_NULL) MPI_Comm_free(&comm_column_);
   DMDestroy(&dm_visc_);
+  DMDestroy(&dm_node_);
   DMDestroy(&dm_pres_);
   DMDestroy(&dm_ten_);
   DMDestroy(&dm_vel_);

@@ -75,6 +75,9 @@ class Grid {
   DM dm_ten() const { return dm_ten_; }    // dof 3, box stencil, width 1: S = (Sxx, Sxy, Syy)
   DM dm_pres() const { return dm_pres_; }  // dof 1, star stencil, width 1: pressure matrix
   DM dm_visc() const { return dm_visc_; }  // dof 2, box stencil, width 1: viscous matrix
+  // dof 3, box stencil, width 1, (nx+1) x (ny+1) nodes (nx x (ny+1) if periodic in x): the node
+  // copy of S. Node (i, j) = (i hx, j hy); owned ranges as the cells', plus the last wall row.
+  DM dm_node() const { return dm_node_; }
   // The ranks that own the same x range (a process column), ordered from the top down: for
   // sums along vertical columns (the hydrostatic pressure of eq. 15).
   MPI_Comm comm_column() const { return comm_column_; }
@@ -90,7 +93,7 @@ class Grid {
   int rank_ = 0, size_ = 1;
   Box box_;
   DM dm_cell_ = nullptr, dm_vel_ = nullptr, dm_ten_ = nullptr, dm_pres_ = nullptr,
-     dm_visc_ = nullptr;
+     dm_visc_ = nullptr, dm_node_ = nullptr;
 };
 
 // Ghost exchange of a global Vec into a local (ghosted) Vec of the same DM.

@@ -60,10 +60,17 @@ class Predictor {
   // rhs += div(kappa S) on the faces, plus the Coulomb wall tractions -kappa_b s_t.
   // kappa: cell yield stress (Pa); S: dm_ten (Sxx, Sxy, Syy); kappa_b, s_wall: dm_vel wall
   // storage (see below).
-  void add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs);
+  // S_node (dm_node, optional: rheology.plastic_grid = "cell_node"): the node copy of S; then
+  // the plastic stress is half the cell copy's plus half the node copy's (the node Sxx, Syy
+  // reach the cells as the mean of their four corners; the node Sxy is the shear stress at the
+  // node itself, wall nodes included on no-slip walls). kappa at a node: the mean of its cells.
+  void add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs, Vec S_node = nullptr);
   // D(u) at the cell centres (dm_ten: Dxx, Dxy, Dyy), with the shear at wall nodes from the
   // wall condition (no slip, Navier: from the wall velocity; free slip, Coulomb: zero).
-  void strain_rate(Vec vel, Vec eta, Vec D);
+  // D_node (dm_node, optional): D(u) at the nodes for the node copy of S: Dxy = half the node
+  // shear rate (on a wall node: from the no-slip wall velocity; 0 on other walls and at the
+  // corners), Dxx, Dyy = the mean over the node's cells of the cell values.
+  void strain_rate(Vec vel, Vec eta, Vec D, Vec D_node = nullptr);
   // Wall storage in a dm_vel Vec: the bottom / top wall value of the u-face (i, 0) / (i, ny-1)
   // in component u at (i, 0) / (i, ny-1); the left / right wall value of the v-face (0, j) /
   // (nx-1, j) in component v at (0, j) / (nx-1, j) (none with periodic x). Faces without

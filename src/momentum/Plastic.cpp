@@ -50,9 +50,18 @@ bool Predictor::coulomb_face(const PetscScalar* const* ph, int side, PetscInt i,
   return false;
 }
 
-void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) {
+void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs, Vec S_node) {
   const Box& b = g_.box();
   Local lk(g_.dm_cell(), kappa), ls(g_.dm_ten(), S);
+  // The node copy: its ghosted values (a dummy zero field's layout is not needed: sn stays null).
+  Vec lsn = nullptr;
+  const PetscScalar*** sn = nullptr;
+  if (S_node) {
+    GF_PETSC(DMGetLocalVector(g_.dm_node(), &lsn));
+    to_local(g_.dm_node(), S_node, lsn);
+    GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_node(), lsn, &sn));
+  }
+  const double wc = S_node ? 0.5 : 1.0;  // the cell copy's share of the plastic stress
   const PetscScalar** k;
   const PetscScalar*** s;  // [j][i][c]
   const PetscScalar** ph = nullptr;
@@ -66,6 +75,27 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) 
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), rhs, &out));
   const PetscInt ny = b.ny;
   auto kS = [&](PetscInt i, PetscInt j, int c) { return k[j][i] * s[j][i][c]; };
+  // kappa at the node (i, j): mean over the cells around it that exist.
+  auto k_node = [&](PetscInt i, PetscInt j) {
+    double sum = 0;
+    int cnt = 0;
+    for (PetscInt jj = j - 1; jj <= j; ++jj)
+      for (PetscInt ii = i - 1; ii <= i; ++ii)
+        if (jj >= 0 && jj < b.ny && b.has_cell_x(ii)) {
+          sum += k[jj][ii];
+          ++cnt;
+        }
+    return cnt ? sum / cnt : 0.0;
+  };
+  auto kSn = [&](PetscInt i, PetscInt j, int c) { return k_node(i, j) * sn[j][i][c]; };
+  // The normal stress of the cell (i, j) (c = 0: xx, 2: yy): the cell copy's share, plus the
+  // node copy's as the mean of the cell's four corners (the adjoint of the node normal rate).
+  auto cell_n = [&](PetscInt i, PetscInt j, int c) {
+    double v = wc * kS(i, j, c);
+    if (sn)
+      v += (1 - wc) * 0.25 * (kSn(i, j, c) + kSn(i + 1, j, c) + kSn(i, j + 1, c) + kSn(i + 1, j + 1, c));
+    return v;
+  };
   // kappa Sxy at the node (i, j) = (i hx, j hy): mean of the four cells around an interior node.
   auto node = [&](PetscInt i, PetscInt j) {
     return 0.25 * (kS(i - 1, j - 1, 1) + kS(i, j - 1, 1) + kS(i - 1, j, 1) + kS(i, j, 1));
@@ -81,32 +111,37 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) 
   auto wall_x = [&](PetscInt i, PetscInt in, PetscInt j) {
     return 0.5 * (1.5 * (kS(i, j - 1, 1) + kS(i, j, 1)) - 0.5 * (kS(in, j - 1, 1) + kS(in, j, 1)));
   };
+  // Shear stress at a node from the two copies: the cell copy's value there (cell_part) and,
+  // with the node copy, the node's own kappa Sxy (interior and no-slip wall nodes).
+  auto shear = [&](double cell_part, PetscInt i, PetscInt j) {
+    return sn ? wc * cell_part + (1 - wc) * kSn(i, j, 1) : cell_part;
+  };
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       if (!b.wall_u(i)) {  // x-momentum on the face (i, j)
-        double f = (kS(i, j, 0) - kS(i - 1, j, 0)) / b.hx;
+        double f = (cell_n(i, j, 0) - cell_n(i - 1, j, 0)) / b.hx;
         // top node (i, j+1)
         double tt;
-        if (j + 1 < ny) tt = node(i, j + 1);
+        if (j + 1 < ny) tt = shear(node(i, j + 1), i, j + 1);
         else if (coulomb_face(ph, 3, i, j)) tt = -kb[j][i].u * sw[j][i].u;
-        else tt = bc_.top.type == WallType::NoSlip ? wall_y(i, j, j - 1) : 0.0;
+        else tt = bc_.top.type == WallType::NoSlip ? shear(wall_y(i, j, j - 1), i, j + 1) : 0.0;
         // bottom node (i, j): the stress there is minus the wall traction on the fluid
         double tb;
-        if (j >= 1) tb = node(i, j);
+        if (j >= 1) tb = shear(node(i, j), i, j);
         else if (coulomb_face(ph, 2, i, j)) tb = kb[j][i].u * sw[j][i].u;
-        else tb = bc_.bottom.type == WallType::NoSlip ? wall_y(i, j, j + 1) : 0.0;
+        else tb = bc_.bottom.type == WallType::NoSlip ? shear(wall_y(i, j, j + 1), i, j) : 0.0;
         out[j][i].u += f + (tt - tb) / b.hy;
       }
       if (j >= 1) {  // y-momentum on the face (i, j)
-        double f = (kS(i, j, 2) - kS(i, j - 1, 2)) / b.hy;
+        double f = (cell_n(i, j, 2) - cell_n(i, j - 1, 2)) / b.hy;
         double tr;
-        if (!b.wall_u(i + 1)) tr = node(i + 1, j);  // periodic x: node nx is node 0
+        if (!b.wall_u(i + 1)) tr = shear(node(i + 1, j), i + 1, j);  // periodic x: node nx is node 0
         else if (coulomb_face(ph, 1, i, j)) tr = -kb[j][i].v * sw[j][i].v;
-        else tr = bc_.right.type == WallType::NoSlip ? wall_x(i, i - 1, j) : 0.0;
+        else tr = bc_.right.type == WallType::NoSlip ? shear(wall_x(i, i - 1, j), i + 1, j) : 0.0;
         double tl;
-        if (!b.wall_u(i)) tl = node(i, j);
+        if (!b.wall_u(i)) tl = shear(node(i, j), i, j);
         else if (coulomb_face(ph, 0, i, j)) tl = kb[j][i].v * sw[j][i].v;
-        else tl = bc_.left.type == WallType::NoSlip ? wall_x(i, i + 1, j) : 0.0;
+        else tl = bc_.left.type == WallType::NoSlip ? shear(wall_x(i, i + 1, j), i, j) : 0.0;
         out[j][i].v += f + (tr - tl) / b.hx;
       }
     }
@@ -116,9 +151,13 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs) 
   if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
   GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), ls.v, &s));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lk.v, &k));
+  if (lsn) {
+    GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_node(), lsn, &sn));
+    GF_PETSC(DMRestoreLocalVector(g_.dm_node(), &lsn));
+  }
 }
 
-void Predictor::strain_rate(Vec vel, Vec eta, Vec D) {
+void Predictor::strain_rate(Vec vel, Vec eta, Vec D, Vec D_node) {
   const Box& b = g_.box();
   to_local(g_.dm_vel(), vel, lvel_);
   Local le(g_.dm_cell(), eta);
@@ -172,6 +211,44 @@ void Predictor::strain_rate(Vec vel, Vec eta, Vec D) {
       d[j][i][2] = dyy;
     }
   GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), D, &d));
+  if (D_node) {
+    // The node copy: the node shear rate itself (wall nodes: only on no-slip walls, where the
+    // node copy's shear stress is the wall stress, see add_plastic), and the mean normal rate
+    // of the node's cells.
+    PetscInt xs, ys, xm, ym;
+    GF_PETSC(DMDAGetCorners(g_.dm_node(), &xs, &ys, nullptr, &xm, &ym, nullptr));
+    PetscScalar*** dn;
+    GF_PETSC(DMDAVecGetArrayDOF(g_.dm_node(), D_node, &dn));
+    auto cell_xx = [&](PetscInt i, PetscInt j) {
+      return 0.5 * ((v[j][i + 1].u - v[j][i].u) / b.hx - (v[j + 1][i].v - v[j][i].v) / b.hy);
+    };
+    for (PetscInt j = ys; j < ys + ym; ++j)
+      for (PetscInt i = xs; i < xs + xm; ++i) {
+        double sum = 0;
+        int cnt = 0;
+        for (PetscInt jj = j - 1; jj <= j; ++jj)
+          for (PetscInt ii = i - 1; ii <= i; ++ii)
+            if (jj >= 0 && jj < ny && b.has_cell_x(ii)) {
+              sum += cell_xx(ii, jj);
+              ++cnt;
+            }
+        const bool wx = b.wall_u(i), wy = (j == 0 || j == ny);
+        double gm = 0;
+        if (!wx && !wy) gm = gamma(i, j);
+        else if (!(wx && wy)) {
+          const WallBC& w = wy ? (j == 0 ? bc_.bottom : bc_.top) : (i == 0 ? bc_.left : bc_.right);
+          const int side = wy ? (j == 0 ? 2 : 3) : (i == 0 ? 0 : 1);
+          const bool coul = wy ? coulomb_face(ph, side, i, j == 0 ? 0 : ny - 1)
+                               : coulomb_face(ph, side, i == 0 ? 0 : nx - 1, j);
+          if (w.type == WallType::NoSlip && !coul) gm = gamma(i, j);
+        }
+        const double xx = cnt ? sum / cnt : 0.0;
+        dn[j][i][0] = xx;
+        dn[j][i][1] = 0.5 * gm;
+        dn[j][i][2] = -xx;
+      }
+    GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_node(), D_node, &dn));
+  }
   if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), le.v, &e));
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &v));

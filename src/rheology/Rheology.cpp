@@ -107,6 +107,94 @@ void neighbourhood_min(const Grid& g, Vec in, Vec out) {
   GF_PETSC(DMRestoreLocalVector(g.dm_cell(), &loc));
 }
 
+namespace {
+// Mean over the cells around the node (i, j) that exist, of a ghosted dm_cell array.
+double node_mean(const Box& b, const PetscScalar* const* a, PetscInt i, PetscInt j) {
+  double sum = 0;
+  int cnt = 0;
+  for (PetscInt jj = j - 1; jj <= j; ++jj)
+    for (PetscInt ii = i - 1; ii <= i; ++ii)
+      if (jj >= 0 && jj < b.ny && b.has_cell_x(ii)) {
+        sum += a[jj][ii];
+        ++cnt;
+      }
+  return cnt ? sum / cnt : 0.0;
+}
+struct LocalCell {
+  DM dm;
+  Vec v = nullptr;
+  const PetscScalar** a = nullptr;
+  LocalCell(DM d, Vec global) : dm(d) {
+    GF_PETSC(DMGetLocalVector(dm, &v));
+    GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, v));
+    GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, v));
+    GF_PETSC(DMDAVecGetArrayRead(dm, v, &a));
+  }
+  ~LocalCell() {
+    DMDAVecRestoreArrayRead(dm, v, &a);
+    DMRestoreLocalVector(dm, &v);
+  }
+};
+}  // namespace
+
+double update_plastic_node(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec kappa, Vec D,
+                           Vec rho, Vec eta, double a0dt, double theta) {
+  const Box& b = g.box();
+  LocalCell lk(g.dm_cell(), kappa), lr(g.dm_cell(), rho), le(g.dm_cell(), eta);
+  PetscScalar*** s;
+  const PetscScalar ***sn, ***d;
+  GF_PETSC(DMDAVecGetArrayDOF(g.dm_node(), S, &s));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g.dm_node(), S_n, &sn));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g.dm_node(), D, &d));
+  PetscInt xs, ys, xm, ym;
+  GF_PETSC(DMDAGetCorners(g.dm_node(), &xs, &ys, nullptr, &xm, &ym, nullptr));
+  const double h2 = std::min(b.hx, b.hy) * std::min(b.hx, b.hy);
+  double change = 0;
+  for (PetscInt j = ys; j < ys + ym; ++j)
+    for (PetscInt i = xs; i < xs + xm; ++i) {
+      double* sc = s[j][i];
+      const double k = node_mean(b, lk.a, i, j);
+      if (k <= 0) {
+        sc[0] = sc[1] = sc[2] = 0.0;
+        continue;
+      }
+      const double rk =
+          r_local(pr, k, node_mean(b, le.a, i, j), node_mean(b, lr.a, i, j) * a0dt * h2) * k;
+      const double dxx = 0.5 * (d[j][i][0] - d[j][i][2]);
+      double sxx = sc[0] + rk * dxx + theta * (sn[j][i][0] - sc[0]);
+      double sxy = sc[1] + rk * d[j][i][1] + theta * (sn[j][i][1] - sc[1]);
+      project(sxx, sxy);
+      change = std::max(change, std::hypot(sxx - sc[0], sxy - sc[1]));
+      sc[0] = sxx;
+      sc[1] = sxy;
+      sc[2] = -sxx;
+    }
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g.dm_node(), D, &d));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g.dm_node(), S_n, &sn));
+  GF_PETSC(DMDAVecRestoreArrayDOF(g.dm_node(), S, &s));
+  return g.max(change);
+}
+
+void project_field_node(const Grid& g, Vec S, Vec kappa) {
+  const Box& b = g.box();
+  LocalCell lk(g.dm_cell(), kappa);
+  PetscScalar*** s;
+  GF_PETSC(DMDAVecGetArrayDOF(g.dm_node(), S, &s));
+  PetscInt xs, ys, xm, ym;
+  GF_PETSC(DMDAGetCorners(g.dm_node(), &xs, &ys, nullptr, &xm, &ym, nullptr));
+  for (PetscInt j = ys; j < ys + ym; ++j)
+    for (PetscInt i = xs; i < xs + xm; ++i) {
+      double* c = s[j][i];
+      if (node_mean(b, lk.a, i, j) <= 0) {
+        c[0] = c[1] = c[2] = 0.0;
+        continue;
+      }
+      project(c[0], c[1]);
+      c[2] = -c[0];
+    }
+  GF_PETSC(DMDAVecRestoreArrayDOF(g.dm_node(), S, &s));
+}
+
 void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Vec kappa) {
   const Box& b = g.box();
   const PetscScalar **ph, **pa, **ph_hyd = nullptr;

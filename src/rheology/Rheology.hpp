@@ -28,6 +28,10 @@ struct Params {
   double mu_inf = 0.73, I0 = 0.279, d = 0;  // eq. 11; d in m
   double eta_min = 1e-3, eta_max = 1.2;      // Pa s: floor and cap of the mu(I) viscosity
   double r_factor = 1;     // r = r_factor (2 eta + rho a0 h^2/dt) / kappa^2 (see r_local)
+  // S also at the nodes (rheology.plastic_grid = "cell_node"): half of the plastic stress from
+  // the cell copy (shear rate = mean of the four node rates), half from the node copy (normal
+  // rate = mean of the adjacent cells').
+  bool node_copy = false;
   double theta_per_dt = 10;  // 1/s: theta = theta_per_dt dt (section 4.1.3), capped at 0.5
   double fp_tol = 1e-6;    // stop when max |S_{k+1} - S_k| and |s_{k+1} - s_k| fall below
   int fp_max_iter = 50;
@@ -91,6 +95,14 @@ namespace gf::rheology {
 // Returns max over cells of |S_new - S| (modified Frobenius norm; collective).
 double update_plastic(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec kappa, Vec D, Vec rho,
                       Vec eta, double a0_over_dt, double theta);
+
+// The same projection on the node copy of S (rheology.plastic_grid = "cell_node"): S, S_n, D
+// on dm_node; kappa, rho, eta (dm_cell) taken at a node as the mean of the cells around it.
+// r is r_local with these means. Returns max |S_new - S| (collective).
+double update_plastic_node(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec kappa, Vec D,
+                           Vec rho, Vec eta, double a0dt, double theta);
+// P on every node of the node copy, and 0 where the node's kappa is 0.
+void project_field_node(const Grid& g, Vec S, Vec kappa);
 
 // The yield stress kappa at the cell centres (eqs. 18-19): 0 where phi >= 0 (air, sharp in the
 // sign of phi, section 3.1); tau_y, tan(alpha) p^+ or tan(alpha) p_hyd where phi < 0.

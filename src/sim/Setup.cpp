@@ -54,6 +54,7 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.rheo.eta_max = rh.eta_max;
   p.rheo.r_factor = rh.r_factor;
   p.rheo.theta_per_dt = rh.theta_per_dt;
+  p.rheo.node_copy = rh.node_copy;
   p.rheo.fp_tol = rh.fp_tol;
   p.rheo.fp_max_iter = rh.fp_max_iter;
   for (int sd = 0; sd < 4; ++sd)

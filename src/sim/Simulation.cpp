@@ -65,13 +65,15 @@ std::string hex(double v) {
 }
 
 // The prognostic fields, in checkpoint order (their names are checked on loading).
-std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, bool prescribed) {
+std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, bool prescribed,
+                                                   bool node_copy) {
   // rho and eta are derived from phi (and, with mu(I), from u and p) but are kept as the last
   // step left them, so that a restart needs no recomputation that could differ.
   std::vector<io::CheckpointField> f = {
       {"phi", s.phi}, {"velocity", s.vel}, {"velocity_old", s.vel_old}, {"p", s.p},
       {"S", s.S},     {"s_wall", s.s_wall}, {"rho", s.rho},             {"eta", s.eta}};
   if (prescribed) f.push_back({"phi0", phi0});
+  if (node_copy) f.push_back({"S_node", s.S_node});  // rheology.plastic_grid = "cell_node"
   return f;
 }
 
@@ -131,7 +133,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
   const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
   prof::Scope pscope(prof::Checkpoint);
   io::write_checkpoint(g_.comm(), rc_.out_dir, std::move(h),
-                       checkpoint_fields(s_, phi0_, prescribed), ckpt_files_);
+                       checkpoint_fields(s_, phi0_, prescribed, stepper_.config().rheo.node_copy), ckpt_files_);
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;
   if (g_.rank() == 0)
@@ -217,7 +219,7 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
     vtk_entries_.emplace_back(te, v.substr(sp + 1));
   }
   const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
-  io::read_checkpoint_fields(g_.comm(), ckpt_dir, h, checkpoint_fields(s_, phi0_, prescribed));
+  io::read_checkpoint_fields(g_.comm(), ckpt_dir, h, checkpoint_fields(s_, phi0_, prescribed, stepper_.config().rheo.node_copy));
   restarted_ = true;
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;

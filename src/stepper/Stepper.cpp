@@ -14,6 +14,7 @@
 #include "momentum/Momentum.hpp"
 #include "projection/Projection.hpp"
 
+
 namespace gf {
 
 Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
@@ -39,7 +40,12 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-fp_anderson", &m, nullptr));
   GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &gS_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &gW_));
-  if (plastic_ && m > 0) anderson_ = std::make_unique<Anderson>(std::vector<Vec>{gS_, gW_}, m);
+  const bool node = plastic_ && cfg_.rheo.node_copy;
+  if (node)
+    for (Vec* v : {&Dn_, &Sn_n_, &gSn_}) GF_PETSC(DMCreateGlobalVector(g.dm_node(), v));
+  if (plastic_ && m > 0)
+    anderson_ = std::make_unique<Anderson>(
+        node ? std::vector<Vec>{gS_, gW_, gSn_} : std::vector<Vec>{gS_, gW_}, m);
   if (fp_monitor_) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs0_mon_));
   for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_, &rho_r_, &eta_r_})
     GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
@@ -55,7 +61,8 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
 
 Stepper::~Stepper() {
   for (Vec* v : {&eta_node_, &rhs_, &u_tilde_, &lphi_, &kappa_, &kappa_b_, &D_, &S_n_, &sw_n_,
-                 &rhs0_, &p_hyd_, &gran_, &eta_s_, &rhs0_mon_, &gS_, &gW_, &rho_r_, &eta_r_})
+                 &rhs0_, &p_hyd_, &gran_, &eta_s_, &rhs0_mon_, &gS_, &gW_, &Dn_, &Sn_n_, &gSn_,
+                 &rho_r_, &eta_r_})
     VecDestroy(v);
 }
 
@@ -308,6 +315,8 @@ StepStats Stepper::step(State& s, double dt) {
     update_yield(s);
     GF_PETSC(VecCopy(s.S, S_n_));
     GF_PETSC(VecCopy(s.s_wall, sw_n_));
+    const bool node = cfg_.rheo.node_copy;
+    if (node) GF_PETSC(VecCopy(s.S_node, Sn_n_));
     const double theta = std::min(0.5, cfg_.rheo.theta_per_dt * dt);
     if (anderson_) anderson_->reset();
     double last_ch = std::numeric_limits<double>::infinity();
@@ -315,7 +324,8 @@ StepStats Stepper::step(State& s, double dt) {
       GF_PETSC(VecCopy(rhs0_, rhs_));
       {
         prof::Scope ps(prof::Plastic);
-        predictor_->add_plastic(kappa_, s.S, kappa_b_, s.s_wall, rhs_);
+        predictor_->add_plastic(kappa_, s.S, kappa_b_, s.s_wall, rhs_,
+                                node ? s.S_node.vec() : nullptr);
       }
       if (fp_monitor_) GF_PETSC(VecCopy(u_tilde_, rhs0_mon_));
       {
@@ -331,12 +341,17 @@ StepStats Stepper::step(State& s, double dt) {
       double ch;
       {
         prof::Scope ps(prof::Plastic);
-        predictor_->strain_rate(u_tilde_, s.eta, D_);
+        predictor_->strain_rate(u_tilde_, s.eta, D_, node ? Dn_ : nullptr);
         // G(x): the projections of eq. 31 applied to the current iterate x = (S, s_t).
         GF_PETSC(VecCopy(s.S, gS_));
         GF_PETSC(VecCopy(s.s_wall, gW_));
         ch = rheology::update_plastic(g_, cfg_.rheo, gS_, S_n_, kappa_, D_, rho_r_, eta_r_,
-                                             c.a0 / dt, theta);
+                                      c.a0 / dt, theta);
+        if (node) {
+          GF_PETSC(VecCopy(s.S_node, gSn_));
+          ch = std::max(ch, rheology::update_plastic_node(g_, cfg_.rheo, gSn_, Sn_n_, kappa_, Dn_,
+                                                          rho_r_, eta_r_, c.a0 / dt, theta));
+        }
         if (predictor_->has_wall_friction()) {
           predictor_->wall_yield(s.p, gS_, kappa_, D_, s.eta, kappa_b_);
           ch = std::max(ch, predictor_->update_wall(u_tilde_, kappa_b_, gW_, sw_n_, s.rho, s.eta,
@@ -356,12 +371,18 @@ StepStats Stepper::step(State& s, double dt) {
         if (anderson_ && grew) anderson_->reset();
         GF_PETSC(VecCopy(gS_, s.S));
         GF_PETSC(VecCopy(gW_, s.s_wall));
+        if (node) GF_PETSC(VecCopy(gSn_, s.S_node));
         if (ch < cfg_.rheo.fp_tol) break;
         continue;
       }
       // Anderson mixing of the last iterates, then back into |S| <= 1, |s_t| <= 1.
       prof::Scope ps(prof::Anderson);
-      anderson_->update({s.S, s.s_wall}, {gS_, gW_});
+      if (node) {
+        anderson_->update({s.S, s.s_wall, s.S_node}, {gS_, gW_, gSn_});
+        rheology::project_field_node(g_, s.S_node, kappa_);
+      } else {
+        anderson_->update({s.S, s.s_wall}, {gS_, gW_});
+      }
       rheology::project_field(g_, s.S, kappa_);
       {
         PetscInt n;

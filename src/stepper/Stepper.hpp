@@ -98,7 +98,9 @@ class Stepper {
   long long mu_i_floor_cells_ = 0, mu_i_cap_cells_ = 0;
   bool fp_monitor_ = false;
   Vec rhs0_mon_ = nullptr;  // previous u~ for -fp_monitor
-  Vec gS_ = nullptr, gW_ = nullptr;  // G(x) of the fixed point: projected S and s_t
+  Vec gS_ = nullptr, gW_ = nullptr;
+  // The node copy of S (rheology.plastic_grid = "cell_node"): D(u~) there, S_node^n, G(x).
+  Vec Dn_ = nullptr, Sn_n_ = nullptr, gSn_ = nullptr;  // G(x) of the fixed point: projected S and s_t
   std::unique_ptr<class Anderson> anderson_;  // a yield stress or wall friction: the fixed point of eq. 31 runs
   Vec kappa_ = nullptr, kappa_b_ = nullptr, D_ = nullptr, S_n_ = nullptr, sw_n_ = nullptr,
       rhs0_ = nullptr, p_hyd_ = nullptr, gran_ = nullptr, eta_s_ = nullptr;
