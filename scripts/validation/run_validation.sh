@@ -10,7 +10,8 @@
 #   LIST=1 scripts/validation/run_validation.sh     # print the runs, their commands and times
 #                                                   # (LIST=psv: name|tier|time|command)
 #
-# A run whose summary.json exists is skipped unless FORCE=1. An existing output folder can stand
+# A run whose summary.json says "completed" is skipped unless FORCE=1 (a failed run is made again,
+# into the same folder). An existing output folder can stand
 # for a run: A128_DIR=/path/to/run (case A, n = 128), A256_DIR=..., B256_DIR=... (symlinked into
 # runs/validation/). GRANFLOW=path chooses the binary (default build/granflow, built by
 # scripts/build.sh if missing); OUT_ROOT=dir the output root (default runs/validation).
@@ -30,7 +31,7 @@ B="$root/cases/ar2_smooth.toml"
 BHP="$root/cases/ar2_smooth_hp.toml"
 wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.friction_angle=$1"; }
 
-# name | tier | estimated time | case | overrides
+# name | tier | estimated time | case | overrides [| PETSc options, passed as PETSC_OPTIONS]
 RUNS=(
   "a_n32|default|40 s|$A|--set grid.n=32"
   "a_n64|default|3 min|$A|--set grid.n=64"
@@ -49,6 +50,7 @@ RUNS=(
   "a_hp_n128|full|30-45 min|$AHP|--set grid.n=128"
   "a_n128_eta0.01|full|1-1.5 h|$A|--set grid.n=128 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
   "b_hp_n64|full|8 min|$BHP|--set grid.n=64"
+  "b_hp_n64_gmres|full|8 min|$BHP|--set grid.n=64|-pres_ksp_type gmres"
   "b_n128_w15|full|15-25 min|$B|--set grid.n=128"
   "b_n128_w12.5|full|15-25 min|$B|--set grid.n=128 $(wall 12.5)"
   "b_n128_w17.5|full|15-25 min|$B|--set grid.n=128 $(wall 17.5)"
@@ -64,8 +66,9 @@ selected() {  # name tier
 
 if [[ -n "${LIST:-}" ]]; then
   for r in "${RUNS[@]}"; do
-    IFS='|' read -r name t est case_file opts <<<"$r"
+    IFS='|' read -r name t est case_file opts petsc <<<"$r"
     cmd="granflow run ${case_file#$root/} --out ${out_root#$root/}/$name $opts"
+    [[ -z "$petsc" ]] || cmd="PETSC_OPTIONS='$petsc' $cmd"
     if [[ "$LIST" == psv ]]; then printf '%s|%s|%s|%s\n' "$name" "$t" "$est" "$cmd"
     else printf '%-16s %-8s %-32s %s\n' "$name" "$t" "$est" "$cmd"; fi
   done
@@ -80,22 +83,24 @@ for pair in "a_n128:${A128_DIR:-}" "a_n256:${A256_DIR:-}" "b_n256_w15:${B256_DIR
     if [[ -f "$dir/summary.json" ]]; then ln -s "$(cd "$dir" && pwd)" "$out_root/$name"
       echo "validation: $name <- $dir (existing run)"
     else echo "validation: $dir has no summary.json yet, $name is not linked" >&2; fi
+  elif [[ -n "$dir" && -L "$out_root/$name" ]]; then echo "validation: $name is already linked"
   fi
 done
 
 failed=0
 for r in "${RUNS[@]}"; do
-  IFS='|' read -r name t est case_file opts <<<"$r"
+  IFS='|' read -r name t est case_file opts petsc <<<"$r"
   selected "$name" "$t" || continue
   out="$out_root/$name"
-  if [[ -f "$out/summary.json" && -z "${FORCE:-}" ]]; then
+  if [[ -z "${FORCE:-}" ]] && grep -qs '"status": "completed"' "$out/summary.json"; then
     echo "validation: $name done (summary.json exists), skipped"; continue
   fi
   if [[ -L "$out" ]]; then echo "validation: $name is a link to an unfinished run, skipped"; continue; fi
-  echo "validation: $name ($t tier, about $est): granflow run ${case_file#$root/} $opts"
+  echo "validation: $name ($t tier, about $est): ${petsc:+PETSC_OPTIONS='$petsc' }granflow run ${case_file#$root/} $opts"
   start=$(date +%s)
   # shellcheck disable=SC2086
-  "$gf" run "$case_file" --out "$out" $opts >"$out_root/$name.log" 2>&1
+  PETSC_OPTIONS="${petsc:-${PETSC_OPTIONS:-}}" "$gf" run "$case_file" --out "$out" $opts \
+    >"$out_root/$name.log" 2>&1
   rc=$?
   echo "validation: $name finished rc=$rc in $(( $(date +%s) - start )) s (log $out_root/$name.log)"
   [[ $rc -eq 0 ]] || failed=$((failed + 1))
