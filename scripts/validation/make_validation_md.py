@@ -1,0 +1,1054 @@
+#!/usr/bin/python3
+"""Writes docs/VALIDATION.md: granflow against section 4 of Chupin, Dubois, Phan, Roche 2021.
+
+usage: /usr/bin/python3 scripts/validation/make_validation_md.py [--runs DIR] [--out FILE]
+                                                                [--no-figures]
+
+Reads the runs made by scripts/validation/run_validation.sh (runs/validation/<name>/: summary.json,
+diagnostics.csv, profiles.csv, deposit.csv, the VTK snapshots), whichever exist: a missing run is
+reported as "not run" with the command that makes it. Writes the tables (quantity | experiment |
+paper | granflow at each grid, with the relative differences to the paper and to the experiment),
+the convergence, viscosity and wall-friction studies, the HP results, the slopes and the
+L_h/L_f-against-L_d/L_f fit of case B, the pass/fail of each "must show" criterion of issue 4,
+and the figures (docs/figures/validation/: comparison plots made here, and figures of
+scripts/plot_collapse.py, each PNG kept under 200 kB).
+
+The reference numbers are those of ../shared/reference/paper_targets.md (the paper's text).
+"""
+import argparse
+import csv
+import datetime
+import io
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+RUN_SCRIPT = os.environ.get("RUN_SCRIPT", os.path.join(ROOT, "scripts/validation/run_validation.sh"))
+GEN_CMD = "/usr/bin/python3 scripts/validation/make_validation_md.py"
+RUN_CMD = "scripts/validation/run_validation.sh"
+FIG_REL = "figures/validation"  # relative to docs/
+MAX_PNG = 200 * 1024
+
+# ---- Reference numbers (paper_targets.md).
+A_RUNOUT_EXP, A_RUNOUT_PAPER = 0.475, 0.442
+A_BACKWALL = 0.14
+A_SPEED_EXP, A_SPEED_PAPER = 0.775, 0.952
+A_STAGES = {"t1_s": 0.1, "t2_s": 0.35, "t3_s": 0.45, "tf_s": 1.06}
+A_VOL_BOUND = 0.84
+A_HP_DEFICIT = 0.24
+B_RUNOUT_EXP = 1.213
+B_RUNOUT_PAPER = {12.5: 1.282, 15.0: 1.145, 17.5: B_RUNOUT_EXP * (1 - 0.15)}
+B_FRONT_ANGLE_PAPER = {12.5: 3.0, 15.0: 4.85, 17.5: 10.0}
+B_FRONT_ANGLE_EXP = 2.5
+B_SLOPES = {"slope_back_deg": 29.0, "slope_front_deg": 7.0}
+B_STAGES = {"t1_s": 0.15, "t2_s": 0.5, "t3_s": 0.9, "tf_s": 1.36}
+B_MAXSPEED_PAPER = 1.6
+B_LH_MAX = {"paper": 0.56, "exp": 0.49}
+B_HP_DEFICIT = 0.50
+B_HP_TF = 1.98
+
+
+# ---- Runs.
+def run_list():
+    out = subprocess.run(["bash", RUN_SCRIPT], env=dict(os.environ, LIST="psv"),
+                         capture_output=True, text=True, check=True).stdout
+    runs = {}
+    for line in out.splitlines():
+        name, tier, est, cmd = line.split("|", 3)
+        runs[name] = {"tier": tier, "est": est, "cmd": cmd}
+    return runs
+
+
+def read_csv(path):
+    if not os.path.exists(path):
+        return {}
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]} if rows else {}
+
+
+class Run:
+    def __init__(self, name, meta, runs_dir):
+        self.name, self.meta = name, meta
+        self.dir = os.path.join(runs_dir, name)
+        p = os.path.join(self.dir, "summary.json")
+        self.exists = os.path.exists(p)
+        self.s = json.load(open(p)) if self.exists else {}
+        self.status = self.s.get("status", "completed") if self.exists else "not run"
+        self.ok = self.status == "completed"
+        self._diag = self._prof = self._dep = None
+
+    def v(self, key):
+        x = self.s.get(key)
+        return float("nan") if x is None else float(x)
+
+    @property
+    def diag(self):
+        if self._diag is None:
+            self._diag = read_csv(os.path.join(self.dir, "diagnostics.csv"))
+        return self._diag
+
+    @property
+    def prof(self):
+        if self._prof is None:
+            self._prof = read_csv(os.path.join(self.dir, "profiles.csv"))
+        return self._prof
+
+    @property
+    def dep(self):
+        if self._dep is None:
+            self._dep = read_csv(os.path.join(self.dir, "deposit.csv"))
+        return self._dep
+
+    def final_profile(self):
+        t = self.prof["t"]
+        m = t == t.max()
+        return self.prof["x"][m], self.prof["h"][m]
+
+    @property
+    def grid(self):
+        return f"{self.s.get('nx')} × {self.s.get('ny')}"
+
+    def make_cmd(self):
+        c = f"`ONLY={self.name} {RUN_CMD}` ({self.meta['tier']} tier, about {self.meta['est']})"
+        if self.exists and not self.ok:
+            d = self.diag
+            fr = (f" (front then at x = {d['front_x'][-1]:.3f} m, furthest "
+                  f"{np.max(d['front_x']):.3f} m)" if d else "")
+            return (f"**{self.status}** at t = {self.v('t_end'):.3f} s{fr}: "
+                    f"{self.s.get('message', '?').split(' (in the step')[0]}; made by {c}")
+        return c
+
+
+# ---- Formatting.
+def isnan(x):
+    return x is None or (isinstance(x, float) and math.isnan(x))
+
+
+def f3(x, nd=3):
+    return "–" if isnan(x) else f"{x:.{nd}g}"
+
+
+def rel(x, ref):
+    if isnan(x) or isnan(ref) or ref == 0:
+        return float("nan")
+    return 100.0 * (x / ref - 1.0)
+
+
+def pct(x, nd=1):
+    return "–" if isnan(x) else f"{x:+.{nd}f} %"
+
+
+def cell(x, paper=None, exp=None, nd=3):
+    """value (Δ paper, Δ experiment)."""
+    if isnan(x):
+        return "–"
+    parts = []
+    if paper is not None and not isnan(paper):
+        parts.append(f"{pct(rel(x, paper))} p")
+    if exp is not None and not isnan(exp):
+        parts.append(f"{pct(rel(x, exp))} e")
+    return f"{x:.{nd}g}" + (f" ({', '.join(parts)})" if parts else "")
+
+
+def table(header, rows):
+    out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def mins(s):
+    return "–" if isnan(s) else (f"{s:.0f} s" if s < 120 else f"{s / 60:.1f} min")
+
+
+# ---- Analysis helpers.
+def lh_fit(run):
+    """Linear fit of L_h/L_f against L_d/L_f for each cut-off over the decreasing branch: from the
+    output where L_h peaks to the last where L_h > 1 % of L_f (the head then is gone). The rising
+    branch before the peak (the head grows while the deposit starts beyond the gate) is left out:
+    the paper's statement (section 4.2.5, Fig. 26) is that L_h/L_f *decreases* linearly with
+    L_d/L_f. L_f = furthest front − gate (as plot_collapse.py). Returns per cut-off: slope,
+    intercept, R², number of points, time range, the peak."""
+    d = run.dep
+    if not d:
+        return {}
+    Lf = run.v("max_front_x_m") - run.v("gate_x_m")
+    res = {}
+    for c in np.unique(d["cutoff"]):
+        mc = (d["cutoff"] == c) & np.isfinite(d["L_h"]) & np.isfinite(d["L_d"])
+        t, Lh, Ld = d["t"][mc], d["L_h"][mc], d["L_d"][mc]
+        if len(t) < 3:
+            continue
+        ip = int(np.argmax(Lh))
+        m = (np.arange(len(t)) >= ip) & (Lh > 0.01 * Lf)
+        if m.sum() < 3:
+            continue
+        X, Y = Ld[m] / Lf, Lh[m] / Lf
+        a, b = np.polyfit(X, Y, 1)
+        r2 = 1 - np.sum((Y - (a * X + b)) ** 2) / max(np.sum((Y - Y.mean()) ** 2), 1e-300)
+        res[float(c)] = {"slope": a, "intercept": b, "r2": r2, "n": int(m.sum()),
+                         "X": X, "Y": Y, "Xall": Ld / Lf, "Yall": Lh / Lf, "Lf": Lf,
+                         "t0": t[m].min(), "t1": t[m].max(), "Lh_max": Lh[ip], "t_peak": t[ip],
+                         "n_moving": int(np.sum(t[m] < run.v("t3_s"))),
+                         "Ad_A_const": mean_in(d["t"][mc], d["Ad_over_A"][mc], run.v("t1_s"),
+                                               run.v("t2_s"))}
+    return res
+
+
+def mean_in(t, y, a, b):
+    if isnan(a) or isnan(b):
+        return float("nan")
+    m = (t >= a) & (t <= b) & np.isfinite(y)
+    return float(np.mean(y[m])) if m.any() else float("nan")
+
+
+def nose(run, tmin=0.1, tmax=0.5):
+    """The bump of the HP model at the upper right corner of the column (section 4.1.5): a nose
+    that overhangs the foot of the mass. From the VTK snapshots with tmin <= t <= tmax: in each
+    row of cells the interface's x (the zero of phi after the last granular cell from the back
+    wall, linear), and the overhang = max over rows of that x − its value in the bottom row.
+    Returns (overhang in m, t, height of the nose tip in m, cell size) for the snapshot where it
+    is largest, or None without snapshots."""
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    import plot_collapse as pc
+    best = None
+    for t, f in pc.pvd_files(run.dir):
+        if t < tmin - 1e-9 or t > tmax + 1e-9:
+            continue
+        xn, yn, field = pc.read_vtr(f)
+        phi = field("phi")
+        xc, yc = 0.5 * (xn[1:] + xn[:-1]), 0.5 * (yn[1:] + yn[:-1])
+        xs = np.full(len(yc), np.nan)
+        for jrow in range(len(yc)):
+            neg = np.nonzero(phi[jrow] < 0)[0]
+            if len(neg) == 0:
+                continue
+            k = neg[-1]
+            if k + 1 < len(xc):
+                a, b = phi[jrow, k], phi[jrow, k + 1]
+                xs[jrow] = xc[k] + (xc[k + 1] - xc[k]) * a / (a - b)
+            else:
+                xs[jrow] = xn[-1]
+        if np.isnan(xs[0]):
+            continue
+        jmax = int(np.nanargmax(xs))
+        over = float(xs[jmax] - xs[0])
+        if best is None or over > best[0]:
+            best = (over, t, float(yc[jmax]), float(xn[1] - xn[0]))
+    return best
+
+
+def trapped_air(run):
+    """Air enclosed in the granular mass in the last VTK snapshot: the area (m^2/m) of the
+    cells with phi > 0 below the highest granular cell of their column, and the mean x of those
+    cells (the nose of the HP model folds over air when it lands). None without snapshots."""
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    import plot_collapse as pc
+    files = pc.pvd_files(run.dir)
+    if not files:
+        return None
+    t, f = files[-1]
+    xn, yn, field = pc.read_vtr(f)
+    phi = field("phi")
+    dx, dy = xn[1] - xn[0], yn[1] - yn[0]
+    area, xs = 0.0, []
+    for i in range(phi.shape[1]):
+        g = np.nonzero(phi[:, i] < 0)[0]
+        if len(g) == 0:
+            continue
+        air = np.nonzero(phi[: g[-1], i] > 0)[0]
+        area += len(air) * dx * dy
+        xs += [0.5 * (xn[i] + xn[i + 1])] * len(air)
+    return area, (float(np.mean(xs)) if xs else float("nan")), t
+
+
+def heights_near_wall(run, xmax=0.3):
+    x, h = run.final_profile()
+    m = x <= xmax
+    return float(np.mean(h[m])) if m.any() else float("nan")
+
+
+# ---- Figures.
+def save_png(fig, path):
+    fig.tight_layout()
+    for dpi in (110, 90, 72, 60):
+        fig.savefig(path, dpi=dpi)
+        if os.path.getsize(path) <= MAX_PNG:
+            break
+    plt.close(fig)
+    shrink_png(path)
+
+
+def shrink_png(path):
+    """Keep a PNG under 200 kB: palette quantisation, then downscaling."""
+    if os.path.getsize(path) <= MAX_PNG:
+        return
+    from PIL import Image
+    im = Image.open(path).convert("RGB")
+    scale = 1.0
+    while True:
+        w, h = int(im.width * scale), int(im.height * scale)
+        q = im.resize((w, h), Image.LANCZOS) if scale < 1 else im
+        q = q.quantize(colors=128, method=Image.Quantize.MEDIANCUT)
+        buf = io.BytesIO()
+        q.save(buf, format="PNG", optimize=True)
+        if buf.tell() <= MAX_PNG or scale < 0.3:
+            open(path, "wb").write(buf.getvalue())
+            return
+        scale *= 0.8
+
+
+def compare_plot(runs, labels, path, title, ref_lines, equal=False, xmax=None):
+    """Front against t and final profiles of several runs, with reference runouts."""
+    runs = [(r, lab) for r, lab in zip(runs, labels) if r.ok]
+    if not runs:
+        return False
+    fig, axs = plt.subplots(2, 1, figsize=(9, 8.5))
+    for r, lab in runs:
+        d = r.diag
+        axs[0].plot(d["t"], d["front_x"], lw=1.4, label=lab)
+        x, h = r.final_profile()
+        axs[1].plot(x, h, lw=1.4, label=f"{lab}, t = {r.prof['t'].max():.3g} s")
+    for val, lab, col, *ls in ref_lines:
+        ls = ls[0] if ls else "--"
+        axs[0].axhline(val, color=col, ls=ls, lw=1.0, label=lab)
+        axs[1].axvline(val, color=col, ls=ls, lw=1.0, label=lab)
+    axs[0].set(xlabel="t (s)", ylabel="front x (m)")
+    axs[1].set(xlabel="x (m)", ylabel="h (m), final")
+    if xmax:
+        axs[1].set_xlim(0, xmax)
+    axs[1].set_ylim(bottom=0)
+    if equal:
+        axs[1].set_aspect("equal")
+    for ax in axs:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    save_png(fig, path)
+    return True
+
+
+def lh_plot(run, fits, path):
+    if not fits:
+        return False
+    fig, ax = plt.subplots(figsize=(6.5, 5))
+    for c, f in fits.items():
+        line, = ax.plot(f["Xall"], f["Yall"], "-", lw=0.6, alpha=0.5)
+        ax.plot(f["X"], f["Y"], ".", ms=4, color=line.get_color(),
+                label=f"cut-off {100 * c:g} % (dots: the decreasing branch, fitted)")
+        xx = np.array([f["X"].min(), f["X"].max()])
+        ax.plot(xx, f["slope"] * xx + f["intercept"], "-", color=line.get_color(), lw=1,
+                label=f"fit: {f['slope']:.3f} x + {f['intercept']:.3f}, R² = {f['r2']:.3f}")
+    ax.set(xlabel="L_d / L_f", ylabel="L_h / L_f")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    ax.set_title(f"{run.name} ({run.grid}): sliding head against basal deposit, "
+                 f"L_f = {fits[next(iter(fits))]['Lf']:.3f} m", fontsize=9)
+    save_png(fig, path)
+    return True
+
+
+def collapse_figures(run, figs_dir, names):
+    """The figures of scripts/plot_collapse.py for a run, drawn into runs/validation/_figures/<run>/
+    (not into the run's folder, which may be someone else's: A128_DIR), the chosen ones copied
+    to docs/figures/validation/<run>_<name>.png."""
+    if not run.ok:
+        return []
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    import plot_collapse as pc
+    src = os.path.join(os.path.dirname(run.dir), "_figures", run.name)
+    stamp = os.path.join(src, "collapse_front.png")
+    if not os.path.exists(stamp) or os.path.getmtime(stamp) < os.path.getmtime(
+            os.path.join(run.dir, "summary.json")):
+        os.makedirs(src, exist_ok=True)
+        r = pc.Run(run.dir)
+        key = pc.which_case(r.case)
+        ref = pc.REFERENCES.get(key) if key else None
+        shift = ref["time_shift"] if ref else 0.0
+        pc.plot_front(r, [], ref, shift, src)
+        pc.plot_profile(r, [], ref, src)
+        pc.plot_snapshots(r, ref, src, "speed", "collapse_speed.png", "|u| (m/s)", cmap="jet")
+        pc.plot_snapshots(r, ref, src, "D_norm", "collapse_strain.png", "|D(u)| (1/s)", log=True)
+        pc.plot_snapshots(r, ref, src, "p", "collapse_pressure.png", "p (Pa)", cmap="coolwarm")
+        pc.plot_structure(r, ref, src)
+        pc.plot_hl(r, ref, src)
+        pc.plot_head(r, ref, src)
+        pc.plot_scalars(r, src)
+    out = []
+    for n in names:
+        p = os.path.join(src, f"collapse_{n}.png")
+        if os.path.exists(p):
+            dst = os.path.join(figs_dir, f"{run.name}_{n}.png")
+            shutil.copyfile(p, dst)
+            shrink_png(dst)
+            out.append((n, f"{FIG_REL}/{run.name}_{n}.png"))
+    return out
+
+
+def img(rel_path, alt):
+    return f"![{alt}]({rel_path})"
+
+
+# ---- The report.
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--runs", default=os.path.join(ROOT, "runs/validation"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs/VALIDATION.md"))
+    ap.add_argument("--no-figures", action="store_true")
+    a = ap.parse_args()
+    meta = run_list()
+    R = {n: Run(n, m, a.runs) for n, m in meta.items()}
+    figs_dir = os.path.join(os.path.dirname(a.out), FIG_REL)
+    if not a.no_figures:
+        os.makedirs(figs_dir, exist_ok=True)
+    L = []  # lines of the document
+    crit = []  # (criterion, value, pass/fail/not run, note)
+
+    def ok(names):
+        return [R[n] for n in names if R[n].ok]
+
+    versions = sorted({r.s.get("version", "?") for r in R.values() if r.ok})
+    L += ["# Validation: granflow against Chupin, Dubois, Phan & Roche 2021 (section 4)", "",
+          "Generated, do not edit by hand. The runs are made by", "",
+          f"    {RUN_CMD}              # default tier (~30 min on one core)",
+          f"    TIER=full {RUN_CMD}    # + the long runs (n = 128, 256; hours to days)", "",
+          "(`A128_DIR=/path/to/run` lets an existing case A n = 128 output folder stand for "
+          "`a_n128`), and this document and its figures by", "", f"    {GEN_CMD}", "",
+          f"from whatever runs exist in `runs/validation/` ({datetime.date.today().isoformat()}; "
+          f"granflow version(s) of the runs: {', '.join(versions) or 'none'}). The reference "
+          "numbers are those of `../shared/reference/paper_targets.md` (the paper's text; its "
+          "figures are not available as data). Cells read *value (±x % p, ±y % e)*: the relative "
+          "difference to the paper's simulation (p) and to the experiment (e). *Runout* is the "
+          "front (furthest x where the granular phase touches the bottom) at the end of the run; "
+          "*furthest front* its maximum over the run (the two differ because the front recedes "
+          "after stopping, see [Known disagreements](#known-disagreements)). Nothing is tuned: "
+          "the parameters are the paper's (cases/*.toml).", ""]
+
+    # ---- Runs table.
+    L += ["## Runs", ""]
+    rows = []
+    for r in R.values():
+        if r.ok:
+            src = (f" (an existing run linked from `{os.path.realpath(r.dir)}`, granflow "
+                   f"{r.s.get('version', '?')})" if os.path.islink(r.dir) else "")
+            rows.append([f"`{r.name}`", r.meta["tier"], r.grid, r.s.get("steps"),
+                         mins(r.v("wall_s")), f"`{r.meta['cmd']}`{src}"])
+        elif r.exists:
+            rows.append([f"`{r.name}`", r.meta["tier"], f"{r.grid}, **{r.status}** at "
+                         f"t = {r.v('t_end'):.3f} s", r.s.get("steps"), mins(r.v("wall_s")),
+                         f"`{r.meta['cmd']}`: {r.s.get('message', '?')}"])
+        else:
+            rows.append([f"`{r.name}`", r.meta["tier"], "**not run**", "", f"(est. {r.meta['est']})",
+                         f"`ONLY={r.name} {RUN_CMD}`"])
+    L += [table(["run", "tier", "grid", "steps", "wall time (1 core)", "command"], rows), "",
+          "Wall times are `wall_s` of summary.json, one rank, on a 2-core machine that was shared "
+          "with other jobs while these runs were made (they may overstate an unloaded core's "
+          "time by up to ~30 %).", ""]
+
+    # ---- Case A.
+    An = [("a_n32", 32), ("a_n64", 64), ("a_n128", 128), ("a_n256", 256)]
+    L += ["## Case A: aspect ratio 0.7, rough bottom (DP, η₀ = 0.5 Pa s)", "",
+          "Column 0.2 × 0.14 m, ρ_s = 1550, DP tan 25.5°, bottom Coulomb tan 25.5°, back wall "
+          "tan 10.5°, domain 0.8 × 0.2, grid 4n × n (`cases/ar07_rough.toml`); experiment of "
+          "Mangeney et al. 2010, the paper's run at n = 256. The paper compares with the "
+          "experiment after a −0.03 s shift (the gate); the stage times here are unshifted "
+          "simulation times, as the paper's.", ""]
+    qA = [("runout (final front) (m)", "runout_m", A_RUNOUT_PAPER, A_RUNOUT_EXP),
+          ("furthest front (m)", "max_front_x_m", A_RUNOUT_PAPER, A_RUNOUT_EXP),
+          ("back-wall height (m)", "backwall_height_m", A_BACKWALL, A_BACKWALL),
+          ("front speed, constant phase (m/s)", "front_speed_mps", A_SPEED_PAPER, A_SPEED_EXP),
+          ("t1, end of acceleration (s)", "t1_s", A_STAGES["t1_s"], None),
+          ("t2, end of constant speed (s)", "t2_s", A_STAGES["t2_s"], None),
+          ("t3, front stops (s)", "t3_s", A_STAGES["t3_s"], None),
+          ("t_f, all motion stops (s)", "tf_s", A_STAGES["tf_s"], None)]
+    hdr = ["quantity", "experiment", "paper (n = 256)"] + [f"granflow n = {n}" for _, n in An]
+    rows = []
+    for lab, key, p, e in qA:
+        nd = 4 if "height" in lab else 3
+        rows.append([lab, f3(e, 4) if e else "–", f3(p, 4)] +
+                    [cell(R[k].v(key), p, e, nd) if R[k].ok else "not run" for k, _ in An])
+    rows.append(["volume change (%)", "–", "loss < 0.84"] +
+                [f"{R[k].v('volume_change_pct'):+.2f}" if R[k].ok else "not run" for k, _ in An])
+    rows.append(["max granular p / (ρ_s g H_c = 2129 Pa)", "–", "≤ 1"] +
+                [f"{R[k].v('max_p_granular_ratio'):.3f}" if R[k].ok else "not run" for k, _ in An])
+    for lab, key in (("slope of the deposit, x ∈ [0.05, 0.15] (°)", "slope_back_deg"),
+                     ("slope of the deposit, x ∈ [0.2, 0.8] (°)", "slope_front_deg"),
+                     ("angle at the front (°)", "front_angle_deg")):
+        rows.append([lab, "–", "–"] + [f3(R[k].v(key)) if R[k].ok else "not run" for k, _ in An])
+    rows.append(["wall time, 1 core", "–", "3 days, 32 procs"] +
+                [mins(R[k].v("wall_s")) if R[k].ok else f"not run (est. {R[k].meta['est']})"
+                 for k, _ in An])
+    L += [table(hdr, rows), "",
+          "The experiment's back-wall height is taken as 0.14 m (the paper: its η₀ = 0.01 run, "
+          "0.1384 m, is 1.5 % below the experiment, i.e. ≈ 0.1405 m). The paper's stage times are "
+          "read off its Fig. 8 (t1 ≈ 0.1, t2 ≈ 0.35, t3 ≈ 0.45 s; the front stops at "
+          "0.42–0.5 s); t_f = 1.06 s is the end of its run, at rest. The slopes and the front "
+          "angle of case A have no reference in the paper (the fit ranges are granflow's).", ""]
+    missingA = [R[k] for k, _ in An if not R[k].ok]
+    if missingA:
+        L += ["Not run: " + "; ".join(f"n = {k.split('_n')[1]}: {R[k].make_cmd()}"
+                                       for k in [r.name for r in missingA]) + ".", ""]
+
+    # Convergence.
+    doneA = [(R[k], n) for k, n in An if R[k].ok]
+    L += ["### Convergence (n = 32, 64, 128, 256)", ""]
+    if len(doneA) >= 2:
+        rows = []
+        prev = None
+        for r, n in doneA:
+            rows.append([n, f"{r.v('runout_m'):.4f}", f"{r.v('max_front_x_m'):.4f}",
+                         f"{r.v('backwall_height_m'):.4f}", f"{r.v('front_speed_mps'):.3f}",
+                         f"{r.v('volume_change_pct'):+.2f}",
+                         pct(rel(r.v("max_front_x_m"), prev.v("max_front_x_m"))) if prev else "–"])
+            prev = r
+        L += [table(["n", "runout (m)", "furthest front (m)", "back wall (m)", "front speed (m/s)",
+                     "volume change (%)", "furthest front vs previous n"], rows), ""]
+        fr = [r.v("max_front_x_m") for r, _ in doneA]
+        grows = all(b >= a for a, b in zip(fr, fr[1:]))
+        L += [f"The furthest front {'grows' if grows else 'does not grow monotonically'} with n "
+              f"({', '.join(f'{x:.3f}' for x in fr)} m), as the paper's (n = 64 shorter than 128 "
+              "and 256, which are close). The volume loss falls with n; it is the main reason "
+              "the final front lies behind the furthest one (see below). "
+              + (f"From n = {doneA[-2][1]} to {doneA[-1][1]} the runout (final front) still "
+                 f"changes by {pct(rel(doneA[-1][0].v('runout_m'), doneA[-2][0].v('runout_m')))}"
+                 f" and the furthest front by "
+                 f"{pct(rel(doneA[-1][0].v('max_front_x_m'), doneA[-2][0].v('max_front_x_m')))}"
+                 ": the furthest front is close to converged, the final front is not (it follows "
+                 "the volume loss)." if len(doneA) >= 2 else ""), ""]
+    else:
+        L += ["Fewer than two resolutions run.", ""]
+    if not a.no_figures and compare_plot(
+            [r for r, _ in doneA], [f"n = {n} ({r.grid})" for r, n in doneA],
+            os.path.join(figs_dir, "a_resolution.png"),
+            "Case A (DP, η₀ = 0.5): front and final deposit at several resolutions (paper Figs. 6, 7)",
+            [(A_RUNOUT_EXP, "experiment runout 0.475 m", "tab:pink"),
+             (A_RUNOUT_PAPER, "paper runout 0.442 m (n = 256)", "tab:blue")], equal=False,
+            xmax=0.6):
+        L += [img(f"{FIG_REL}/a_resolution.png", "case A resolutions"), ""]
+
+    fineA = doneA[-1] if doneA else None
+    if fineA and not a.no_figures:
+        figs = collapse_figures(fineA[0], figs_dir, ["front", "speed", "pressure", "scalars"])
+        if figs:
+            L += [f"Figures of the finest case A run (`{fineA[0].name}`, by "
+                  f"`scripts/plot_collapse.py`): front with the stages and the paper's marks, "
+                  "|u| snapshots (Fig. 3), pressure (Fig. 5), back-wall height / max pressure / "
+                  "volume / max speed against t.", ""]
+            L += [img(p, n) for n, p in figs] + [""]
+
+    # Viscosity.
+    Av = [("a_n64", 0.5), ("a_n64_eta0.1", 0.1), ("a_n64_eta0.01", 0.01)]
+    L += ["### Viscosity study (n = 64; η₀ = 0.01 with dt ≤ 5e-4 s, halved as the paper)", ""]
+    rows = []
+    for k, eta in Av + [("a_n128_eta0.01", 0.01)]:
+        r = R[k]
+        if r.ok:
+            rows.append([eta, r.grid, cell(r.v("runout_m"), A_RUNOUT_PAPER, A_RUNOUT_EXP),
+                         cell(r.v("max_front_x_m"), A_RUNOUT_PAPER, A_RUNOUT_EXP),
+                         cell(r.v("backwall_height_m"), 0.1384 if eta == 0.01 else A_BACKWALL, None, 4),
+                         f3(r.v("front_speed_mps")), f3(r.v("tf_s")),
+                         f"{r.v('volume_change_pct'):+.2f}"])
+        else:
+            rows.append([eta, r.status, r.make_cmd(), "", "", "", "", ""])
+    L += [table(["η₀ (Pa s)", "grid", "runout (m)", "furthest front (m)", "back wall (m)",
+                 "front speed (m/s)", "t_f (s)", "volume change (%)"], rows), "",
+          "Paper: a smaller η₀ brings the runout closer to the experiment's 0.475 m; with "
+          "η₀ = 0.01 the back-wall height is 0.1384 m, 1.5 % below the experiment (the "
+          "back-wall column's p-difference is to 0.1384 m for η₀ = 0.01, to 0.14 m otherwise). "
+          "t_f is granflow's stop (max granular |u| below 1 mm/s to the end of the run); the "
+          "paper gives t_f = 1.06 s, the time it reports the pile at rest, for η₀ = 0.5.", ""]
+    vis = [R[k] for k, _ in Av]
+    if all(r.ok for r in vis):
+        ro = [r.v("runout_m") for r in vis]
+        mf = [r.v("max_front_x_m") for r in vis]
+        # The paper: a smaller eta_0 brings the runout closer to the experiment.
+        closer = all(abs(x - A_RUNOUT_EXP) < abs(v[0] - A_RUNOUT_EXP)
+                     for v in (ro, mf) for x in v[1:])
+        mono = all(v[0] < v[1] < v[2] for v in (ro, mf))
+        d12 = rel(ro[2], ro[1])
+        L += [f"Trend: runout {', '.join(f'{x:.3f}' for x in ro)} m and furthest front "
+              f"{', '.join(f'{x:.3f}' for x in mf)} m for η₀ = 0.5, 0.1, 0.01. "
+              + ("Both η₀ = 0.1 and 0.01 run out further than η₀ = 0.5 and closer to the "
+                 "experiment's 0.475 m, the paper's trend" if closer else
+                 "The smaller viscosities do not all run out closer to the experiment: this "
+                 "disagrees with the paper")
+              + ("; the growth is monotone." if mono else
+                 f"; from 0.1 to 0.01 the runout changes by {pct(d12)} only: the trend "
+                 "saturates below η₀ = 0.1 at this grid (the η₀ = 0.01 run is also still "
+                 "creeping at the end, see t_f, and loses less volume)."), ""]
+        crit.append(("A: viscosity study shows the paper's trend (smaller η₀, runout closer "
+                     "to the experiment)",
+                     f"runout {', '.join(f'{x:.3f}' for x in ro)} m; furthest "
+                     f"{', '.join(f'{x:.3f}' for x in mf)} m (η₀ = 0.5, 0.1, 0.01, n = 64)",
+                     "pass" if closer else "fail",
+                     "monotone" if mono else f"not monotone: 0.1 → 0.01 changes the runout by "
+                     f"{pct(d12)}"))
+    else:
+        crit.append(("A: viscosity study shows the paper's trend", "–", "not run",
+                     "; ".join(r.make_cmd() for r in vis if not r.ok)))
+    if not a.no_figures and compare_plot(
+            ok([k for k, _ in Av]), [f"η₀ = {e} Pa s" for k, e in Av if R[k].ok],
+            os.path.join(figs_dir, "a_viscosity.png"),
+            "Case A, n = 64: front and final deposit for η₀ = 0.5, 0.1, 0.01 (paper Figs. 9, 10)",
+            [(A_RUNOUT_EXP, "experiment runout 0.475 m", "tab:pink"),
+             (A_RUNOUT_PAPER, "paper runout 0.442 m (η₀ = 0.5, n = 256)", "tab:blue")], xmax=0.6):
+        L += [img(f"{FIG_REL}/a_viscosity.png", "case A viscosities"), ""]
+
+    # mu(I).
+    L += ["### μ(I) viscosity (n = 64)", ""]
+    rm, r5 = R["a_mui_n64"], R["a_n64"]
+    if rm.ok:
+        L += [table(["quantity", "experiment", "Ionescu et al. 2015 (μ(I))", "granflow μ(I) n = 64",
+                     "granflow DP η₀ = 0.5, n = 64"],
+                    [["runout (m)", "0.475", "+1.4 % e", cell(rm.v("runout_m"), None, A_RUNOUT_EXP),
+                      cell(r5.v("runout_m"), None, A_RUNOUT_EXP) if r5.ok else "not run"],
+                     ["furthest front (m)", "0.475", "", cell(rm.v("max_front_x_m"), None, A_RUNOUT_EXP),
+                      cell(r5.v("max_front_x_m"), None, A_RUNOUT_EXP) if r5.ok else "not run"],
+                     ["back-wall height (m)", "0.14", "−10 % e",
+                      cell(rm.v("backwall_height_m"), None, A_BACKWALL, 4),
+                      cell(r5.v("backwall_height_m"), None, A_BACKWALL, 4) if r5.ok else "not run"],
+                     ["t_f (s)", "", "", f3(rm.v("tf_s")), f3(r5.v("tf_s")) if r5.ok else ""],
+                     ["volume change (%)", "", "", f"{rm.v('volume_change_pct'):+.2f}",
+                      f"{r5.v('volume_change_pct'):+.2f}" if r5.ok else ""]]), "",
+              "The paper shows the μ(I) viscosity field of this run (Fig. 2: bounded by 1.2 Pa s, "
+              "above 0.5 in most of the mass) to justify η₀ = 0.5; it reports no runout for it.",
+              ""]
+    else:
+        L += [f"Not run: {rm.make_cmd()}.", ""]
+
+    # HP case A.
+    L += ["### HP model, case A (paper: n = 128, runout 24 % short of the experiment)", ""]
+    hpA = [R[k] for k in ("a_hp_n64", "a_hp_n128")]
+    rows = []
+    for r in hpA:
+        if r.ok:
+            b = nose(r)
+            rows.append([r.name, r.grid, cell(r.v("runout_m"), A_RUNOUT_EXP * (1 - A_HP_DEFICIT),
+                                               A_RUNOUT_EXP),
+                         cell(r.v("max_front_x_m"), A_RUNOUT_EXP * (1 - A_HP_DEFICIT), A_RUNOUT_EXP),
+                         cell(r.v("backwall_height_m"), A_BACKWALL, None, 4), f3(r.v("tf_s")),
+                         f"{r.v('max_p_granular_ratio'):.3f}",
+                         f"{1000 * b[0]:.1f} mm ({b[0] / b[3]:.1f} cells) at t = {b[1]:.2f} s, "
+                         f"tip at y = {b[2]:.3f} m" if b else "–"])
+        else:
+            rows.append([r.name, r.status, r.make_cmd(), "", "", "", "", ""])
+    bdp = nose(R["a_n64"]) if R["a_n64"].ok else None
+    L += [table(["run", "grid", "runout (m)", "furthest front (m)", "back wall (m)", "t_f (s)",
+                 "max p ratio", "nose: overhang beyond the foot, 0.1 ≤ t ≤ 0.5 s"], rows), "",
+          "The paper's value in the runout column is 0.475 × (1 − 0.24) = 0.361 m. The *nose* "
+          "column measures the bump at the upper right corner of the column that rolls up and "
+          "falls (section 4.1.5): how far the interface overhangs its foot on the bottom, the "
+          "largest over the VTK snapshots of 0.1 ≤ t ≤ 0.5 s, with the height of its tip" +
+          (f" (DP η₀ = 0.5, n = 64: {1000 * bdp[0]:.1f} mm at t = {bdp[1]:.2f} s)" if bdp else "")
+          + ". Section 4.1.5 of the paper: the bump forms from t ≈ 0.18 s, its nose falls on "
+          "the bottom near t ≈ 0.42 s.", ""]
+    hp_fine = next((r for r in reversed(hpA) if r.ok), None)
+    if hp_fine:
+        d = -rel(hp_fine.v("runout_m"), A_RUNOUT_EXP)
+        dm = -rel(hp_fine.v("max_front_x_m"), A_RUNOUT_EXP)
+        crit.append(("HP case A: runout short of the experiment by roughly 24 % (16–32 %)",
+                     f"{d:.1f} % short (furthest front {dm:.1f} %), {hp_fine.grid}",
+                     "pass" if 16 <= d <= 32 else "fail",
+                     "paper at n = 128" if "128" not in hp_fine.name else ""))
+        b = nose(hp_fine)
+        crit.append(("HP case A: bump at the upper right corner, visible in the figures",
+                     f"nose overhangs its foot by {1000 * b[0]:.1f} mm ({b[0] / b[3]:.1f} cells) "
+                     f"at t = {b[1]:.2f} s, tip at y = {b[2]:.3f} m" if b else "–",
+                     "pass" if b and b[0] > 3 * b[3] else "fail",
+                     "overhang > 3 cells (this report's threshold); see the |u| snapshots"))
+        if not a.no_figures:
+            compare_plot([r for r in hpA if r.ok] + ([R["a_n64"]] if R["a_n64"].ok else []),
+                         [f"HP {r.grid}" for r in hpA if r.ok] + (["DP η₀ = 0.5, 256 × 64"]
+                                                               if R["a_n64"].ok else []),
+                         os.path.join(figs_dir, "a_hp.png"),
+                         "Case A: HP model against DP (paper Figs. 13, 14)",
+                         [(A_RUNOUT_EXP, "experiment runout 0.475 m", "tab:pink"),
+                          (A_RUNOUT_EXP * (1 - A_HP_DEFICIT), "paper HP: 24 % short", "tab:blue")],
+                         xmax=0.6)
+            L += [img(f"{FIG_REL}/a_hp.png", "case A HP")]
+            L += [img(p, n) for n, p in collapse_figures(hp_fine, figs_dir, ["speed"])] + [""]
+    else:
+        crit.append(("HP case A: runout ~24 % short", "–", "not run", hpA[0].make_cmd()))
+
+    # Criteria of case A at the finest run.
+    if fineA:
+        r, n = fineA
+        note = "" if n >= 128 else f"at n = {n}: the criterion is stated at n = 128, not run here"
+        ro, mf = r.v("runout_m"), r.v("max_front_x_m")
+        crit.insert(0, ("A: runout within 5 % of the paper's 0.442 m",
+                        f"{ro:.4f} m ({pct(rel(ro, A_RUNOUT_PAPER))}); furthest front {mf:.4f} m "
+                        f"({pct(rel(mf, A_RUNOUT_PAPER))}), n = {n}",
+                        "pass" if abs(rel(ro, A_RUNOUT_PAPER)) <= 5 else
+                        ("fail (furthest front passes)" if abs(rel(mf, A_RUNOUT_PAPER)) <= 5
+                         else "fail"), note))
+        bw = r.v("backwall_height_m")
+        crit.insert(1, ("A: back-wall height within 2 % of 0.14 m",
+                        f"{bw:.4f} m ({pct(rel(bw, A_BACKWALL), 2)})",
+                        "pass" if abs(rel(bw, A_BACKWALL)) <= 2 else "fail", note))
+        vc = r.v("volume_change_pct")
+        crit.insert(2, ("A: volume change below 0.84 %", f"{vc:+.2f} %",
+                        "pass" if abs(vc) < A_VOL_BOUND else "fail", note))
+        pr = r.v("max_p_granular_ratio")
+        crit.insert(3, ("A: max granular pressure ≤ ρ_s g H_c", f"{pr:.3f} × 2129 Pa",
+                        "pass" if pr <= 1.0 else "fail", note))
+        tf = r.v("tf_s")
+        crit.insert(4, ("A: motion stopped by t ≈ 1.1 s",
+                        f"t_f = {f3(tf)} s, max granular |u| at the end "
+                        f"{r.v('max_speed_granular_end'):.1e} m/s",
+                        "pass" if (not isnan(tf) and tf <= 1.1) else "fail", note))
+    else:
+        crit.insert(0, ("A: runout, back wall, volume, pressure, stop", "–", "not run",
+                        R["a_n64"].make_cmd()))
+
+    # ---- Case B.
+    L += ["## Case B: aspect ratio 2, smooth bottom (DP 27°, η₀ = 0.1 Pa s, walls 15°)", "",
+          "Column 0.2 × 0.4 m, ρ_s = 1450, domain 1.38 × 0.46, grid 3n × n (`cases/ar2_smooth.toml`); "
+          "experiment of Roche et al. 2010; the paper's run at 768 × 256 (n = 256).", ""]
+    Bn = [("b_n32_w15", 32), ("b_n64_w15", 64), ("b_n128_w15", 128), ("b_n256_w15", 256)]
+    qB = [("runout (final front) (m)", "runout_m", B_RUNOUT_PAPER[15.0], B_RUNOUT_EXP),
+          ("furthest front (m)", "max_front_x_m", B_RUNOUT_PAPER[15.0], B_RUNOUT_EXP),
+          ("slope of the deposit, x ≤ 0.35 m (°)", "slope_back_deg", 29.0, None),
+          ("slope of the deposit, x ≥ 0.5 m (°)", "slope_front_deg", 7.0, None),
+          ("angle at the front (°)", "front_angle_deg", 4.85, B_FRONT_ANGLE_EXP),
+          ("t1, end of acceleration (s)", "t1_s", B_STAGES["t1_s"], None),
+          ("t2, end of constant speed (s)", "t2_s", B_STAGES["t2_s"], None),
+          ("t3, front stops (s)", "t3_s", B_STAGES["t3_s"], None),
+          ("t_f, all motion stops (s)", "tf_s", B_STAGES["tf_s"], None)]
+    rows = []
+    for lab, key, p, e in qB:
+        rows.append([lab, f3(e, 4) if e else "–", f3(p, 4)] +
+                    [cell(R[k].v(key), p, e) if R[k].ok else "not run" for k, _ in Bn])
+    rows.append(["back-wall height (m)", "–", "right"] +
+                [f"{R[k].v('backwall_height_m'):.4f}" if R[k].ok else "not run" for k, _ in Bn])
+    rows.append(["max granular |u| (m/s)", "–", "≈ 1.6"] +
+                [f3(np.nanmax(R[k].diag["max_speed_granular"])) if R[k].ok else "not run"
+                 for k, _ in Bn])
+    rows.append(["max granular p / (ρ_s g H_c = 5690 Pa)", "–", "≤ 1"] +
+                [f"{R[k].v('max_p_granular_ratio'):.3f}" if R[k].ok else "not run" for k, _ in Bn])
+    rows.append(["volume change (%)", "–", "–"] +
+                [f"{R[k].v('volume_change_pct'):+.2f}" if R[k].ok else "not run" for k, _ in Bn])
+    rows.append(["wall time, 1 core", "–", "6 days, 32 procs"] +
+                [mins(R[k].v("wall_s")) if R[k].ok else f"not run (est. {R[k].meta['est']})"
+                 for k, _ in Bn])
+    L += [table(["quantity", "experiment", "paper (768 × 256)"] +
+                [f"granflow n = {n} ({3 * n} × {n})" for _, n in Bn], rows), ""]
+    doneB = [(R[k], n) for k, n in Bn if R[k].ok]
+    if not a.no_figures and compare_plot(
+            [r for r, _ in doneB], [f"n = {n} ({r.grid})" for r, n in doneB],
+            os.path.join(figs_dir, "b_resolution.png"),
+            "Case B (DP 27°, η₀ = 0.1, walls 15°): front and final deposit at several resolutions",
+            [(B_RUNOUT_EXP, "experiment runout 1.213 m", "tab:pink"),
+             (B_RUNOUT_PAPER[15.0], "paper runout 1.145 m (768 × 256)", "tab:blue")]):
+        L += [img(f"{FIG_REL}/b_resolution.png", "case B resolutions"), ""]
+
+    # Wall friction study: the finest n at which all three exist, else each at its finest.
+    L += ["### Wall-friction study (12.5°, 15°, 17.5° on the bottom and the back wall)", ""]
+    rows = []
+    wf_by_n = {}
+    for n in (32, 64, 128):
+        names = [f"b_n{n}_w{w}" for w in ("12.5", "15", "17.5")]
+        rs = [R[k] for k in names]
+        if any(r.ok for r in rs):
+            wf_by_n[n] = rs
+        for w, r in zip((12.5, 15.0, 17.5), rs):
+            if r.ok:
+                rows.append([f"{w}°", r.grid, cell(r.v("runout_m"), B_RUNOUT_PAPER[w], B_RUNOUT_EXP),
+                             cell(r.v("max_front_x_m"), B_RUNOUT_PAPER[w], B_RUNOUT_EXP),
+                             cell(heights_near_wall(r), None, None, 4),
+                             cell(r.v("front_angle_deg"), B_FRONT_ANGLE_PAPER[w], B_FRONT_ANGLE_EXP),
+                             f3(r.v("slope_back_deg")), f3(r.v("slope_front_deg"))])
+            elif n == 32 or any(x.ok for x in rs):
+                rows.append([f"{w}°", r.status, r.make_cmd(), "", "", "", "", ""])
+    L += [table(["wall friction", "grid", "runout (m)", "furthest front (m)",
+                 "mean final h, x ≤ 0.3 m (m)", "front angle (°)", "slope x ≤ 0.35 (°)",
+                 "slope x ≥ 0.5 (°)"], rows), "",
+          "Paper (768 × 256): runout 1.282 m (12.5°), 1.145 m (15°), 15 % short of the "
+          "experiment, 1.031 m (17.5°); front angle 3°, 4.85°, 10° (experiment 2.5°); heights "
+          "near the back wall (x ≤ 0.3) 11.3 %, 5.5 %, 2.85 % below the experiment (12.5° on "
+          "x ∈ [0, 0.35]); the experimental heights are not available as numbers, so the mean "
+          "height is listed without a difference.", ""]
+    for n, rs in sorted(wf_by_n.items(), reverse=True):
+        if all(r.ok for r in rs):
+            ro = [r.v("runout_m") for r in rs]
+            mf = [r.v("max_front_x_m") for r in rs]
+            falls = ro[0] > ro[1] > ro[2] and mf[0] > mf[1] > mf[2]
+            L += [f"At n = {n}: runout {', '.join(f'{x:.3f}' for x in ro)} m for 12.5°, 15°, "
+                  f"17.5°: it {'falls' if falls else 'does not fall monotonically'} as the "
+                  f"friction angle grows{', as in the paper' if falls else ''}.", ""]
+            Lx = 1.38
+            near = [f"{w}° (furthest front {r.v('max_front_x_m'):.3f} m)"
+                    for w, r in zip(("12.5", "15", "17.5"), rs) if r.v("max_front_x_m") > Lx - 0.03]
+            if near:
+                L += ["The front of " + ", ".join(near) + f" comes within 3 cm of the end of the "
+                      f"paper's domain (x = {Lx} m): that runout is bounded by the domain, not "
+                      "only by the physics.", ""]
+            crit.append(("B: runout falls as the wall friction grows (paper's study)",
+                         f"{', '.join(f'{x:.3f}' for x in ro)} m (n = {n})",
+                         "pass" if falls else "fail", "not a criterion of the issue; its study"))
+            if not a.no_figures and compare_plot(
+                    rs, [f"{w}°" for w in ("12.5", "15", "17.5")],
+                    os.path.join(figs_dir, "b_friction.png"),
+                    f"Case B, n = {n} ({rs[0].grid}): wall friction 12.5°, 15°, 17.5° (paper Figs. 15, 16)",
+                    [(B_RUNOUT_EXP, "experiment runout 1.213 m", "tab:pink")] +
+                    [(B_RUNOUT_PAPER[w], f"paper {w}°: {B_RUNOUT_PAPER[w]:.3f} m", c, ":")
+                     for w, c in ((12.5, "C0"), (15.0, "C1"), (17.5, "C2"))]):
+                L += [img(f"{FIG_REL}/b_friction.png", "case B wall friction"), ""]
+            break
+
+    # Slopes, structure, L_h linearity at the finest case B run.
+    fineB = doneB[-1] if doneB else None
+    L += ["### Deposit slopes and internal structure (section 4.2.5)", ""]
+    if fineB:
+        r, n = fineB
+        note = "" if n >= 256 else f"at n = {n}; the paper's grid is n = 256"
+        ro, mf = r.v("runout_m"), r.v("max_front_x_m")
+        crit.append(("B: runout within 5 % of the paper's 1.145 m",
+                     f"{ro:.4f} m ({pct(rel(ro, B_RUNOUT_PAPER[15.0]))}); furthest front "
+                     f"{mf:.4f} m ({pct(rel(mf, B_RUNOUT_PAPER[15.0]))}), n = {n}",
+                     "pass" if abs(rel(ro, B_RUNOUT_PAPER[15.0])) <= 5 else
+                     ("fail (furthest front passes)" if abs(rel(mf, B_RUNOUT_PAPER[15.0])) <= 5
+                      else "fail"), note))
+        sb, sf = r.v("slope_back_deg"), r.v("slope_front_deg")
+        crit.append(("B: slopes near 29° (x ≤ 0.35) and 7° (x ≥ 0.5), within 2°",
+                     f"{sb:.1f}° and {sf:.1f}°",
+                     "pass" if abs(sb - 29) <= 2 and abs(sf - 7) <= 2 else "fail",
+                     (note + "; " if note else "") + "the 2° tolerance is this report's"))
+        fits = lh_fit(r)
+        if fits:
+            rows = [[f"{100 * c:g} %", f"{f['Lh_max']:.3f} m at t = {f['t_peak']:.2f} s",
+                     f3(f["Ad_A_const"], 2), f"{f['slope']:.3f}", f"{f['intercept']:.3f}",
+                     f"{f['r2']:.4f}", f["n"], f"{f['t0']:.2f}–{f['t1']:.2f}"]
+                    for c, f in fits.items()]
+            L += [f"Finest run `{r.name}` ({r.grid}): slopes {sb:.1f}° (x ≤ 0.35 m; paper 29°) and "
+                  f"{sf:.1f}° (x ≥ 0.5 m; paper 7°), angle at the front "
+                  f"{r.v('front_angle_deg'):.1f}° over the last 2 cm (paper 4.85°, experiment "
+                  f"2.5°; 2 cm are {0.02 / (1.38 / (r.s.get('nx') or 1)):.1f} cells here).", "",
+                  "Sliding head L_h = L − L_d and basal deposit (paper: L_h peaks at 0.56 m, "
+                  "0.49 m in the experiment; A_d/A ≈ 20–25 % in the constant-speed phase; "
+                  "L_h/L_f decreases linearly with L_d/L_f, one line for both cut-offs). The fit "
+                  "is over the decreasing branch, from the peak of L_h until the head is gone "
+                  "(L_h > 1 % of L_f); the rising branch before the peak is drawn but not fitted. "
+                  f"L_f = furthest front − L_c = {fits[next(iter(fits))]['Lf']:.3f} m.", "",
+                  table(["cut-off", "max L_h", "mean A_d/A in [t1, t2]", "slope", "intercept",
+                         "R²", "points", "t (s)"], rows), "",
+                  "Once the front has stopped (t ≥ t3), L = L_f and L_h/L_f = 1 − L_d/L_f holds "
+                  "identically (slope −1); the line is a result only while the front still "
+                  f"moves: here t3 = {f3(r.v('t3_s'))} s, and "
+                  + ", ".join(f"{f['n_moving']} of the {f['n']} points ({100 * c:g} %)"
+                              for c, f in fits.items())
+                  + " are before t3.", ""]
+            r2 = min(f["r2"] for f in fits.values())
+            sl = [f["slope"] for f in fits.values()]
+            crit.append(("B: L_h/L_f against L_d/L_f linear (R² ≥ 0.95, both cut-offs)",
+                         ", ".join(f"R² = {f['r2']:.3f}, slope {f['slope']:.2f} ({100 * c:g} %)"
+                                   for c, f in fits.items()),
+                         "pass" if r2 >= 0.95 else "fail",
+                         (note + "; " if note else "") + "fit over the decreasing branch; R² threshold is this report's; the "
+                         f"paper: one line for both cut-offs (slopes here differ by "
+                         f"{abs(sl[0] - sl[-1]):.2f})"))
+            if not a.no_figures and lh_plot(r, fits, os.path.join(figs_dir, "b_lh_ld.png")):
+                L += [img(f"{FIG_REL}/b_lh_ld.png", "L_h/L_f against L_d/L_f"), ""]
+        else:
+            crit.append(("B: L_h/L_f against L_d/L_f linear", "–", "fail", "no deposit data"))
+        if not a.no_figures:
+            figs = collapse_figures(r, figs_dir, ["profile", "speed", "pressure", "structure",
+                                                   "hl", "head"])
+            L += [f"Figures of `{r.name}` by `scripts/plot_collapse.py`: final profile with the "
+                  "slope fits, |u| (Fig. 17), pressure (Fig. 18), deposit and flowing layer "
+                  "(Fig. 23), h_l and ∂t h_l (Figs. 24, 25), L_h and A_d/A (Figs. 26, 27).", ""]
+            L += [img(p, nm) for nm, p in figs] + [""]
+    else:
+        crit.append(("B: runout, slopes, L_h linearity", "–", "not run", R["b_n32_w15"].make_cmd()))
+
+    # HP case B.
+    L += ["### HP model, case B (domain 4 × 0.5, walls 19°; paper: n = 128, runout ≈ 50 % short)", ""]
+    hpB = [R[k] for k in ("b_hp_n32", "b_hp_n64", "b_hp_n64_gmres", "b_hp_n128")]
+    rows = []
+    for r in hpB:
+        if r.ok:
+            rows.append([r.name, r.grid, cell(r.v("runout_m"), B_RUNOUT_EXP * (1 - B_HP_DEFICIT),
+                                               B_RUNOUT_EXP),
+                         cell(r.v("max_front_x_m"), B_RUNOUT_EXP * (1 - B_HP_DEFICIT), B_RUNOUT_EXP),
+                         f"{r.v('backwall_height_m'):.4f}", cell(r.v("tf_s"), B_HP_TF),
+                         f"{r.v('max_p_granular_ratio'):.3f}", f"{r.v('volume_change_pct'):+.2f}",
+                         mins(r.v("wall_s"))])
+        else:
+            rows.append([r.name, r.status, r.make_cmd(), "", "", "", "", "", ""])
+    L += [table(["run", "grid", "runout (m)", "furthest front (m)", "back wall (m)", "t_f (s)",
+                 "max p ratio", "volume change (%)", "wall time"], rows), "",
+          "The paper's value in the runout column is 1.213 × 0.5 = 0.607 m; its t_f is 1.98 s "
+          "(experiment 1.36 s). The case file assumes η₀ = 0.1 (the paper does not restate it). "
+          "`b_hp_n64_gmres` is `b_hp_n64` with the pressure solve's CG replaced by GMRES "
+          "(`PETSC_OPTIONS='-pres_ksp_type gmres'`), same physics: CG needs a symmetric positive "
+          "definite preconditioner, and BoomerAMG's default (non-symmetric) smoother is not "
+          "always one.", ""]
+    for r in hpB:
+        if r.exists and not r.ok:
+            L += [f"**`{r.name}` failed** at t = {r.v('t_end'):.3f} s: "
+                  f"{r.s.get('message', '?')} (the suggested `-pres_pc_type hypre` is already the "
+                  "default of the pressure solve, `src/projection/Projection.cpp`: the message "
+                  "is misleading)."
+                  + (f" Its front had then reached {np.max(r.diag['front_x']):.3f} m "
+                     f"({pct(rel(np.max(r.diag['front_x']), B_RUNOUT_EXP))} against the "
+                     "experiment)." if r.diag else ""), ""]
+    hpb = next((r for r in reversed(hpB) if r.ok), None)
+    okB = [r for r in hpB if r.ok]
+    if okB:
+        parts = []
+        for r in okB:
+            d = r.diag
+            ip = int(np.argmax(d["max_p_granular"]))
+            leave = d["t"][np.argmax(d["front_x"] > r.v("gate_x_m") + 0.01)]
+            parts.append(f"{r.grid}: runout {r.v('runout_m'):.3f} m "
+                         f"({-rel(r.v('runout_m'), B_RUNOUT_EXP):.0f} % short), the front leaves "
+                         f"the gate (by 1 cm) at t = {leave:.2f} s, max granular p "
+                         f"{r.v('max_p_granular_ratio'):.2f} ρ_s g H_c at t = {d['t'][ip]:.2f} s, "
+                         f"max granular |u| {d['max_speed_granular'][-1]:.1e} m/s at the end")
+        ro = [r.v("runout_m") for r in okB]
+        above = [r.grid for r in okB if r.v("max_p_granular_ratio") > 1]
+        moving = [r.grid for r in okB if isnan(r.v("tf_s"))]
+        for r in okB:
+            ta = trapped_air(r)
+            if ta and ta[0] > 0:
+                parts[okB.index(r)] += (f", {1e4 * ta[0]:.1f} cm² of air trapped in the mass at "
+                                        f"t = {ta[2]:.2f} s (mean x = {ta[1]:.2f} m: under the "
+                                        "nose that folded over when it landed)")
+        L += ["; ".join(parts) + ". The front leaves the gate late: the column destabilises "
+              "from the top, as in the paper. "
+              + ("The runout grows with n, so the agreement of a coarse grid with the paper's "
+                 "−50 % is not a converged result. " if len(ro) > 1 and
+                 all(b > a for a, b in zip(ro, ro[1:])) else "")
+              + "The largest pressure comes when the mass falling from the top lands on the "
+              "bottom (a dynamic pressure" + (f", above ρ_s g H_c at {', '.join(above)}"
+                                              if above else "")
+              + "; the paper reports a smooth pressure and no bound for this run)."
+              + (f" Not at rest (max granular |u| > 1 mm/s) at t = 2 s at {', '.join(moving)} "
+                 "(the paper: at rest at 1.98 s)." if moving else ""), ""]
+    if hpb:
+        d = -rel(hpb.v("runout_m"), B_RUNOUT_EXP)
+        finer = [r for r in hpB if r.exists and not r.ok and r.diag
+                 and (r.s.get("ny") or 0) > (hpb.s.get("ny") or 0)]
+        extra = "".join(f"; {r.name} ({r.grid}) failed at t = {r.v('t_end'):.2f} s with its front "
+                        f"at {np.max(r.diag['front_x']):.3f} m "
+                        f"({-rel(np.max(r.diag['front_x']), B_RUNOUT_EXP):.0f} % short): the "
+                        "coarse result is not robust" for r in finer)
+        others = "".join(f"; {r.grid}: {-rel(r.v('runout_m'), B_RUNOUT_EXP):.1f} % short"
+                         for r in okB if r is not hpb)
+        crit.append(("HP case B: runout roughly 50 % short of the experiment (40–60 %)",
+                     f"{d:.1f} % short (furthest front "
+                     f"{-rel(hpb.v('max_front_x_m'), B_RUNOUT_EXP):.1f} %), {hpb.grid}{others}",
+                     ("pass" if 40 <= d <= 60 else "fail") + (" (coarse grid only)" if finer else ""),
+                     ("" if "128" in hpb.name else "paper at n = 128 (1024 × 128)") + extra))
+        if not a.no_figures:
+            figs = collapse_figures(hpb, figs_dir, ["profile", "speed"])
+            L += [img(p, nm) for nm, p in figs] + [""]
+    else:
+        crit.append(("HP case B: runout ~50 % short", "–", "not run", hpB[0].make_cmd()))
+
+    reg = os.path.exists(os.path.join(ROOT, "tests/regression/test_case_a_short.sh"))
+    crit.append(("Regression test of case A (coarse, short) against stored values",
+                 "tests/regression/test_case_a_short.sh (n = 16, t ≤ 0.2 s, 1e-6 relative)"
+                 if reg else "–", "present" if reg else "missing", "run by ctest; not re-run here"))
+
+    # ---- Criteria, placed after the runs table.
+    C = ["## The criteria of issue 4 (\"what it must show\")", "",
+         "Each criterion at the finest grid run here (the note says when that is coarser than "
+         "the grid the issue names).", "",
+         table(["criterion", "granflow", "result", "note"], [list(c) for c in crit]), ""]
+    k = L.index("## Case A: aspect ratio 0.7, rough bottom (DP, η₀ = 0.5 Pa s)")
+    L[k:k] = C
+
+    # ---- Known disagreements.
+    vc = {n: R[k].v("volume_change_pct") for k, n in An if R[k].ok}
+    pr = {}
+    for k, n in An:
+        r = R[k]
+        if r.ok:
+            d = r.diag
+            ratio = d["max_p_granular"] / r.v("pressure_scale_pa")
+            above = d["t"][ratio > 1.0]
+            pr[n] = (r.v("max_p_granular_ratio"), float(d["t"][np.argmax(ratio)]),
+                     (float(above.min()), float(above.max())) if len(above) else None)
+    after = []
+    for k, n in An:
+        r = R[k]
+        if r.ok and not isnan(r.v("tf_s")):
+            d = r.diag
+            i = int(np.argmin(np.abs(d["t"] - r.v("tf_s"))))
+            after.append(f"n = {n}: {d['volume_change_pct'][i]:+.2f} % and front "
+                         f"{d['front_x'][i]:.3f} m at t_f = {r.v('tf_s'):.2f} s, "
+                         f"{d['volume_change_pct'][-1]:+.2f} % and {d['front_x'][-1]:.3f} m at "
+                         f"{d['t'][-1]:.2f} s")
+    ex = [v[0] - 1 for v in pr.values()]
+    p_trend = ("" if len(ex) < 2 else
+               "The excess does not fall with n (not a resolution effect)." if ex[-1] > 0.8 * ex[0]
+               else "The excess falls with n.")
+    L += ["## Known disagreements", "",
+          "- **Granular volume.** The level set loses granular volume where the flowing layer "
+          "becomes thinner than a few cells, at the front: case A loses "
+          + ", ".join(f"{-v:.2f} % (n = {n})" for n, v in vc.items()) +
+          " against the paper's < 0.84 % (at n = 256). "
+          "The thin tip that goes with it makes the front *recede* after it stopped, so the "
+          "final front (runout) lies behind the furthest front; both are reported. The loss "
+          "falls with the grid spacing. Most of it is lost while the thin front decelerates "
+          "(t ≈ 0.4–0.8 s for case A); it goes on, more slowly, after the motion has stopped "
+          "(the advection is then negligible, the redistancing of the thin tip remains), so the "
+          "runout also depends on how long a run continues at rest: " + "; ".join(after) + ".",
+          "- **Pressure.** The max granular pressure of case A exceeds ρ_s g H_c briefly: "
+          + "; ".join(f"n = {n}: by {100 * (v - 1):.1f} % at t = {tm:.2f} s"
+                      + (f", above the bound for {ab[0]:.2f} ≤ t ≤ {ab[1]:.2f} s" if ab else "")
+                      for n, (v, tm, ab) in pr.items()) +
+          ", at the end of the acceleration phase, when the collapsing column's upper part "
+          "is decelerated; the paper reports p ≤ ρ_s g H_c at all times. " + p_trend +
+          " Its cause is not identified here. The pressure falls back below the bound "
+          "afterwards (scalars figure). The HP run's excess is larger (see its table).",
+          "- **Runout of case B.** " + ("; ".join(
+              f"n = {n}: {r.v('runout_m'):.3f} m (furthest {r.v('max_front_x_m'):.3f} m)"
+              for r, n in doneB) if doneB else "not run") +
+          " against the paper's 1.145 m (768 × 256) and the experiment's 1.213 m. "
+          + ("The runout grows with n and exceeds the paper's value from n = "
+             f"{next((n for r, n in doneB if r.v('runout_m') > B_RUNOUT_PAPER[15.0]), '?')} on: "
+             "it is not converged at the grids run here, and the finer runs overshoot the "
+             "paper's. Whether n = 256 (the paper's grid, full tier) comes back to 1.145 m is "
+             "not known; the cause of the difference is not identified."
+             if len(doneB) >= 2 and all(b[0].v("runout_m") > a[0].v("runout_m")
+                                        for a, b in zip(doneB, doneB[1:]))
+             and doneB[-1][0].v("runout_m") > B_RUNOUT_PAPER[15.0] else ""),
+          "- **Slopes of case B.** " + ("; ".join(
+              f"n = {n}: {r.v('slope_back_deg'):.1f}° and {r.v('slope_front_deg'):.1f}°"
+              for r, n in doneB) if doneB else "not run") +
+          " against the paper's 29° (x ≤ 0.35 m) and 7° (x ≥ 0.5 m): the deposit is flatter than "
+          "the paper's both near the back wall and in the far field, with a runout close to the "
+          "paper's. The cause is not identified; the trend with n is listed in the table. The "
+          "angle at the front is fitted over the last 2 cm, i.e. 1.4–3 cells at these grids: "
+          "not resolved (NaN where there are too few cells).",
+          "- **Resolution.** The finest runs here are coarser than the paper's (case A "
+          f"{fineA[0].grid if fineA else '–'} against 1024 × 256, case B "
+          f"{fineB[0].grid if fineB else '–'} against 768 × 256, HP case A "
+          f"{hp_fine.grid if hp_fine else '–'} and HP case B {hpb.grid if hpb else '–'} against "
+          "n = 128): the paper itself shows the n = 64 runout short of the finer ones. The "
+          "`full` tier runs the paper's grids; those not run are listed as such above.",
+          "- **Stage times.** granflow's stages follow rules on the front (diagnostics/"
+          "Collapse.hpp); the paper reads its t1, t2, t3 off its figures, so the stage "
+          "differences are indicative.",
+          "- **The gate** of the experiments is not modelled (as in the paper); the experimental "
+          "times are compared after the paper's −0.03 s shift for case A in the figures of "
+          "`plot_collapse.py` only.", ""]
+
+    with open(a.out, "w") as f:
+        f.write("\n".join(L))
+    print(f"wrote {a.out}")
+
+
+if __name__ == "__main__":
+    main()

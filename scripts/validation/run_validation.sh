@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# Runs of the validation report (issue 4, item 5): section 4 of Chupin, Dubois, Phan, Roche 2021
+# with the paper's parameters (cases/*.toml), into runs/validation/<name>/, one after the other
+# on one rank. Then `scripts/validation/make_validation_md.py` writes docs/VALIDATION.md from
+# whatever runs exist.
+#
+#   scripts/validation/run_validation.sh            # default tier (~30 min on one free core)
+#   TIER=full scripts/validation/run_validation.sh  # + the long runs (hours to days, see below)
+#   ONLY="a_n64 b_n32_w15" scripts/validation/run_validation.sh   # just these runs
+#   LIST=1 scripts/validation/run_validation.sh     # print the runs, their commands and times
+#                                                   # (LIST=psv: name|tier|time|command)
+#
+# A run whose summary.json says "completed" is skipped unless FORCE=1 (a failed run is made again,
+# into the same folder). An existing output folder can stand
+# for a run: A128_DIR=/path/to/run (case A, n = 128), A256_DIR=..., B256_DIR=... (symlinked into
+# runs/validation/). GRANFLOW=path chooses the binary (default build/granflow, built by
+# scripts/build.sh if missing); OUT_ROOT=dir the output root (default runs/validation).
+#
+# Times are wall times on one core of the development machine (2 cores, unloaded); measured for
+# the default tier, extrapolated (cells x steps) for the full tier.
+set -uo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+tier="${TIER:-default}"
+out_root="${OUT_ROOT:-$root/runs/validation}"
+gf="${GRANFLOW:-$root/build/granflow}"
+A="$root/cases/ar07_rough.toml"
+AHP="$root/cases/ar07_rough_hp.toml"
+AMUI="$root/cases/ar07_rough_mui.toml"
+B="$root/cases/ar2_smooth.toml"
+BHP="$root/cases/ar2_smooth_hp.toml"
+wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.friction_angle=$1"; }
+
+# name | tier | estimated time | case | overrides [| PETSc options, passed as PETSC_OPTIONS]
+RUNS=(
+  "a_n32|default|40 s|$A|--set grid.n=32"
+  "a_n64|default|3 min|$A|--set grid.n=64"
+  "a_n64_eta0.1|default|3.5 min|$A|--set grid.n=64 --set phase.granular.eta=0.1"
+  "a_n64_eta0.01|default|6 min|$A|--set grid.n=64 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
+  "a_hp_n64|default|3 min|$AHP|--set grid.n=64"
+  "a_mui_n64|default|2.5 min|$AMUI|--set grid.n=64"
+  "b_n32_w15|default|25 s|$B|--set grid.n=32"
+  "b_n32_w12.5|default|25 s|$B|--set grid.n=32 $(wall 12.5)"
+  "b_n32_w17.5|default|25 s|$B|--set grid.n=32 $(wall 17.5)"
+  "b_hp_n32|default|1.5 min|$BHP|--set grid.n=32"
+  "b_n64_w15|default|2 min|$B|--set grid.n=64"
+  "b_n64_w12.5|default|2 min|$B|--set grid.n=64 $(wall 12.5)"
+  "b_n64_w17.5|default|2 min|$B|--set grid.n=64 $(wall 17.5)"
+  "a_n128|full|30-45 min|$A|--set grid.n=128"
+  "a_hp_n128|full|30-45 min|$AHP|--set grid.n=128"
+  "a_n128_eta0.01|full|1-1.5 h|$A|--set grid.n=128 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
+  "b_hp_n64|full|8 min|$BHP|--set grid.n=64"
+  "b_hp_n64_gmres|full|8 min|$BHP|--set grid.n=64|-pres_ksp_type gmres"
+  "b_n128_w15|full|15-25 min|$B|--set grid.n=128"
+  "b_n128_w12.5|full|15-25 min|$B|--set grid.n=128 $(wall 12.5)"
+  "b_n128_w17.5|full|15-25 min|$B|--set grid.n=128 $(wall 17.5)"
+  "b_hp_n128|full|1-1.5 h|$BHP|--set grid.n=128"
+  "a_n256|full|4-6 h|$A|--set grid.n=256"
+  "b_n256_w15|full|2-4 h (the paper's 768 x 256)|$B|--set grid.n=256"
+)
+
+selected() {  # name tier
+  if [[ -n "${ONLY:-}" ]]; then [[ " $ONLY " == *" $1 "* ]]; return; fi
+  [[ "$2" == default || "$tier" == full ]]
+}
+
+if [[ -n "${LIST:-}" ]]; then
+  for r in "${RUNS[@]}"; do
+    IFS='|' read -r name t est case_file opts petsc <<<"$r"
+    cmd="granflow run ${case_file#$root/} --out ${out_root#$root/}/$name $opts"
+    [[ -z "$petsc" ]] || cmd="PETSC_OPTIONS='$petsc' $cmd"
+    if [[ "$LIST" == psv ]]; then printf '%s|%s|%s|%s\n' "$name" "$t" "$est" "$cmd"
+    else printf '%-16s %-8s %-32s %s\n' "$name" "$t" "$est" "$cmd"; fi
+  done
+  exit 0
+fi
+
+if [[ ! -x "$gf" ]]; then "$root/scripts/build.sh" || exit 1; fi
+mkdir -p "$out_root"
+for pair in "a_n128:${A128_DIR:-}" "a_n256:${A256_DIR:-}" "b_n256_w15:${B256_DIR:-}"; do
+  name="${pair%%:*}"; dir="${pair#*:}"
+  if [[ -n "$dir" && ! -e "$out_root/$name" ]]; then
+    if [[ -f "$dir/summary.json" ]]; then ln -s "$(cd "$dir" && pwd)" "$out_root/$name"
+      echo "validation: $name <- $dir (existing run)"
+    else echo "validation: $dir has no summary.json yet, $name is not linked" >&2; fi
+  elif [[ -n "$dir" && -L "$out_root/$name" ]]; then echo "validation: $name is already linked"
+  fi
+done
+
+failed=0
+for r in "${RUNS[@]}"; do
+  IFS='|' read -r name t est case_file opts petsc <<<"$r"
+  selected "$name" "$t" || continue
+  out="$out_root/$name"
+  if [[ -z "${FORCE:-}" ]] && grep -qs '"status": "completed"' "$out/summary.json"; then
+    echo "validation: $name done (summary.json exists), skipped"; continue
+  fi
+  if [[ -L "$out" ]]; then echo "validation: $name is a link to an unfinished run, skipped"; continue; fi
+  echo "validation: $name ($t tier, about $est): ${petsc:+PETSC_OPTIONS='$petsc' }granflow run ${case_file#$root/} $opts"
+  start=$(date +%s)
+  # shellcheck disable=SC2086
+  PETSC_OPTIONS="${petsc:-${PETSC_OPTIONS:-}}" "$gf" run "$case_file" --out "$out" $opts \
+    >"$out_root/$name.log" 2>&1
+  rc=$?
+  echo "validation: $name finished rc=$rc in $(( $(date +%s) - start )) s (log $out_root/$name.log)"
+  [[ $rc -eq 0 ]] || failed=$((failed + 1))
+done
+[[ $failed -eq 0 ]] || { echo "validation: $failed run(s) failed" >&2; exit 1; }
+echo "validation: now /usr/bin/python3 scripts/validation/make_validation_md.py"
