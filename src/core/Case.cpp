@@ -186,6 +186,9 @@ Params case_params() {
   p.add_real("rheology.fp_tol", "", 1e-4, Range::gt(0),
              "Fixed point of eq. 31: stop when the largest change of S and s_t in one "
              "iteration is below this.");
+  p.add_real("rheology.fp_tol_u", "m/s", 0.0, Range::ge(0),
+             "Fixed point of eq. 31: if > 0, also stop when the largest change of the velocity "
+             "u~ in one iteration is below this (0: only fp_tol).");
   p.add_int("rheology.fp_max_iter", "", 50, closed(1, 1e6),
             "Fixed point of eq. 31: most iterations per time step.");
   p.add_real("rheology.fp_fail_change", "", 1.0, Range::gt(0),
@@ -418,6 +421,7 @@ CaseConfig fill(const Params& p) {
   rh.theta_per_dt = p.get_real("rheology.theta_per_dt");
   rh.node_copy = p.get_string("rheology.plastic_grid") == "cell_node";
   rh.fp_tol = p.get_real("rheology.fp_tol");
+  rh.fp_tol_u = p.get_real("rheology.fp_tol_u");
   rh.fp_max_iter = static_cast<int>(p.get_int("rheology.fp_max_iter"));
   rh.fp_fail_change = p.get_real("rheology.fp_fail_change");
 

@@ -107,6 +107,7 @@ struct CaseConfig {
     double theta_per_dt = 0;  // 1/s, theta = min(theta_per_dt dt, 0.5)
     bool node_copy = false;   // rheology.plastic_grid = "cell_node": S also at the nodes
     double fp_tol = 0;        // -, on the max change of S and s_t in one iteration
+    double fp_tol_u = 0;      // m/s, on the max change of u~ in one iteration (0: off)
     int fp_max_iter = 0;
     double fp_fail_change = 1.0;  // -, a capped step ending above this change is a failure
     // mu_s = tan(alpha).

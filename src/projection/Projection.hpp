@@ -29,12 +29,15 @@ class Projector {
   void assemble(Vec rho);
   // Projects u_tilde (in place -> u^{n+1}) and updates p (p^n -> p^{n+1}). Returns KSP iterations.
   int project(Vec vel, Vec p, Vec rho, double a0, double dt);
+  // Whether the last project() had to solve again with GMRES after CG broke down.
+  bool fell_back() const { return fell_back_; }
 
  private:
   const Grid& g_;
   Mat M_ = nullptr;
   KSP ksp_ = nullptr;
   MatNullSpace null_ = nullptr;
+  bool fell_back_ = false;
   Vec rhs_ = nullptr, psi_ = nullptr, lpsi_ = nullptr, lvel_ = nullptr, lrho_ = nullptr;
 };
 

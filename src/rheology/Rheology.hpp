@@ -34,6 +34,9 @@ struct Params {
   bool node_copy = false;
   double theta_per_dt = 10;  // 1/s: theta = theta_per_dt dt (section 4.1.3), capped at 0.5
   double fp_tol = 1e-6;    // stop when max |S_{k+1} - S_k| and |s_{k+1} - s_k| fall below
+  // m/s; > 0: also stop when the velocity u~ of eq. 31 changes by less than this in one
+  // iteration (its modes that do not move u converge at the rate 1 - theta only).
+  double fp_tol_u = 0;
   int fp_max_iter = 50;
   bool active() const { return yield != Yield::None; }
 };

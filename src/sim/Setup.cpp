@@ -56,6 +56,7 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.rheo.theta_per_dt = rh.theta_per_dt;
   p.rheo.node_copy = rh.node_copy;
   p.rheo.fp_tol = rh.fp_tol;
+  p.rheo.fp_tol_u = rh.fp_tol_u;
   p.rheo.fp_max_iter = rh.fp_max_iter;
   for (int sd = 0; sd < 4; ++sd)
     p.wall_tan_b[sd] = c.walls[sd].friction_angle_deg > 0 ? c.walls[sd].tan_friction() : 0.0;

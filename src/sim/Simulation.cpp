@@ -106,6 +106,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.fp_capped_steps", lp_.fp_capped_steps);
   h.set("loop.fp_capped_change", lp_.fp_capped_change);
   h.set("loop.volume_warn_rows", lp_.volume_warn_rows);
+  h.set("loop.pres_fallbacks", lp_.pres_fallbacks);
   h.set("loop.mu_floor_max", lp_.mu_floor_max);
   h.set("loop.mu_cap_max", lp_.mu_cap_max);
   h.set("loop.restarts", lp_.restarts);
@@ -176,6 +177,7 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   lp_.fp_capped_steps = h.get_int("loop.fp_capped_steps");
   lp_.fp_capped_change = h.get_double("loop.fp_capped_change");
   lp_.volume_warn_rows = h.get_int("loop.volume_warn_rows");
+  lp_.pres_fallbacks = h.has("loop.pres_fallbacks") ? h.get_int("loop.pres_fallbacks") : 0;
   lp_.mu_floor_max = h.get_int("loop.mu_floor_max");
   lp_.mu_cap_max = h.get_int("loop.mu_cap_max");
   lp_.restarts = h.get_int("loop.restarts") + 1;
@@ -362,6 +364,7 @@ RunSummary Simulation::run() {
         .set("warnings_fp_capped_steps", lp_.fp_capped_steps)
         .set("fp_capped_max_change", lp_.fp_capped_change)
         .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
+        .set("warnings_pressure_gmres_fallbacks", lp_.pres_fallbacks)
         .set("mu_i_floor_cells_max", lp_.mu_floor_max)
         .set("mu_i_cap_cells_max", lp_.mu_cap_max);
     collapse.summarize(js);
@@ -456,6 +459,13 @@ RunSummary Simulation::run() {
     if (last.fp_capped) {
       ++lp_.fp_capped_steps;
       lp_.fp_capped_change = std::max(lp_.fp_capped_change, last.fp_change);
+    }
+    if (last.pres_fallback) {
+      if (lp_.pres_fallbacks == 0 && g_.rank() == 0)
+        log::message("granflow: warning: the pressure solve's CG broke down (indefinite "
+                     "preconditioner) in the step to t = " + num(s_.t) +
+                     " s; solved again with GMRES (further cases counted in summary.json)");
+      ++lp_.pres_fallbacks;
     }
     lp_.mu_floor_max = std::max(lp_.mu_floor_max, last.mu_i_floor_cells);
     lp_.mu_cap_max = std::max(lp_.mu_cap_max, last.mu_i_cap_cells);

@@ -92,6 +92,7 @@ class Simulation {
     long long fp_capped_steps = 0;   // steps whose fixed point stopped at its cap (a warning)
     double fp_capped_change = 0;     // the largest last change of those steps
     long long volume_warn_rows = 0;  // diagnostics rows with |volume change| > volume_warn_pct
+    long long pres_fallbacks = 0;    // pressure solves made again with GMRES (a warning)
     long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
     long long restarts = 0;
     int max_fp_iters = 0;

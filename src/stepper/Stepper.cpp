@@ -34,6 +34,9 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   PetscBool mon = PETSC_FALSE;
   GF_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-fp_monitor", &mon, nullptr));
   fp_monitor_ = mon;
+  // -fp_anderson_reset_ratio q: the Anderson history is dropped when the change grows by more
+  // than the factor q from one iteration to the next (1: at any growth).
+  GF_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-fp_anderson_reset_ratio", &reset_ratio_, nullptr));
   // -fp_anderson m: depth of the Anderson acceleration of the fixed point (0 = plain Picard
   // iteration as in the paper). Same fixed point either way.
   PetscInt m = 5;
@@ -46,7 +49,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   if (plastic_ && m > 0)
     anderson_ = std::make_unique<Anderson>(
         node ? std::vector<Vec>{gS_, gW_, gSn_} : std::vector<Vec>{gS_, gW_}, m);
-  if (fp_monitor_) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs0_mon_));
+  if (fp_monitor_ || cfg_.rheo.fp_tol_u > 0) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs0_mon_));
   for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_, &rho_r_, &eta_r_})
     GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
   for (Vec* v : {&D_, &S_n_}) GF_PETSC(DMCreateGlobalVector(g.dm_ten(), v));
@@ -327,13 +330,14 @@ StepStats Stepper::step(State& s, double dt) {
         predictor_->add_plastic(kappa_, s.S, kappa_b_, s.s_wall, rhs_,
                                 node ? s.S_node.vec() : nullptr);
       }
-      if (fp_monitor_) GF_PETSC(VecCopy(u_tilde_, rhs0_mon_));
+      const bool track_u = fp_monitor_ || cfg_.rheo.fp_tol_u > 0;
+      if (track_u) GF_PETSC(VecCopy(u_tilde_, rhs0_mon_));
       {
         prof::Scope ps(prof::ViscousSolve);
         st.visc_its += predictor_->solve(rhs_, u_tilde_);
       }
       PetscReal du = 0, un = 0;
-      if (fp_monitor_) {
+      if (track_u) {
         GF_PETSC(VecAXPY(rhs0_mon_, -1.0, u_tilde_));
         GF_PETSC(VecNorm(rhs0_mon_, NORM_INFINITY, &du));
         GF_PETSC(VecNorm(u_tilde_, NORM_INFINITY, &un));
@@ -365,14 +369,20 @@ StepStats Stepper::step(State& s, double dt) {
                     s.step + 1, k, ch, (double)du, (double)un);
       // Safeguard: the projections make the map non-smooth (active sets change); when the
       // residual grows, the extrapolation is dropped (history reset) and the plain step taken.
-      const bool grew = ch > last_ch;
+      const bool grew = ch > reset_ratio_ * last_ch;
       last_ch = ch;
-      if (ch < cfg_.rheo.fp_tol || !anderson_ || grew) {
+      // k > 1: the first solve's change is from the previous step's velocity.
+      const bool done = ch < cfg_.rheo.fp_tol ||
+                        (cfg_.rheo.fp_tol_u > 0 && k > 1 && du < cfg_.rheo.fp_tol_u);
+      if (done || !anderson_ || grew) {
         if (anderson_ && grew) anderson_->reset();
         GF_PETSC(VecCopy(gS_, s.S));
         GF_PETSC(VecCopy(gW_, s.s_wall));
         if (node) GF_PETSC(VecCopy(gSn_, s.S_node));
-        if (ch < cfg_.rheo.fp_tol) break;
+        if (done) {
+          st.fp_converged = true;
+          break;
+        }
         continue;
       }
       // Anderson mixing of the last iterates, then back into |S| <= 1, |s_t| <= 1.
@@ -393,7 +403,7 @@ StepStats Stepper::step(State& s, double dt) {
         GF_PETSC(VecRestoreArray(s.s_wall, &w));
       }
     }
-    st.fp_capped = st.fp_change >= cfg_.rheo.fp_tol;
+    st.fp_capped = !st.fp_converged;
     st.mu_i_floor_cells = mu_i_floor_cells_;
     st.mu_i_cap_cells = mu_i_cap_cells_;
   }
@@ -405,6 +415,7 @@ StepStats Stepper::step(State& s, double dt) {
   {
     prof::Scope ps(prof::Pressure);
     st.pres_its = projector_->project(u_tilde_, s.p, s.rho, c.a0, dt);
+    st.pres_fallback = projector_->fell_back();
   }
   GF_PETSC(VecCopy(s.vel, s.vel_old));
   GF_PETSC(VecCopy(u_tilde_, s.vel));

@@ -50,10 +50,12 @@ struct StepStats {
   int visc_its = 0, pres_its = 0;  // KSP iterations: viscous (all fixed-point iterations), pressure
   int fp_iters = 0;                // fixed-point iterations of eq. 31
   double fp_change = 0;            // last change of S and s_t (dimensionless)
+  bool fp_converged = false;       // met fp_tol (or fp_tol_u)
   bool fp_capped = false;          // stopped at fp_max_iter without reaching fp_tol
   long long mu_i_floor_cells = 0;  // granular cells where the mu(I) viscosity is at eta_min
   long long mu_i_cap_cells = 0;    // ... and at eta_max (rheology.eta_min / eta_max)
   bool redistanced = false;
+  bool pres_fallback = false;      // the pressure solve was made again with GMRES (CG broke down)
 };
 
 class Stepper {
@@ -97,6 +99,7 @@ class Stepper {
   bool plastic_ = false;
   long long mu_i_floor_cells_ = 0, mu_i_cap_cells_ = 0;
   bool fp_monitor_ = false;
+  PetscReal reset_ratio_ = 1.0;
   Vec rhs0_mon_ = nullptr;  // previous u~ for -fp_monitor
   Vec gS_ = nullptr, gW_ = nullptr;
   // The node copy of S (rheology.plastic_grid = "cell_node"): D(u~) there, S_node^n, G(x).
