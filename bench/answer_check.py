@@ -15,7 +15,11 @@ passes:
   tf_s                                            0.05 s (the end of motion is a threshold on a
                                                   slowly decaying max |u|)
   volume_change_pct                               0.1 percentage point
-  max_p_granular_ratio                            1 % relative
+  max_p_granular_ratio                            2 % relative (a peak over space and time
+                                                  that depends on how far the fixed point of
+                                                  eq. 31 is converged: at n = 64 it is 0.6 %
+                                                  below its fully converged value with
+                                                  rheology.fp_tol = 1e-4, docs/PERFORMANCE.md)
   slope_back_deg, slope_front_deg, front_angle_deg 1 degree
 Exit 0 when every figure is within its tolerance, 1 otherwise (the table says which).
 """
@@ -34,7 +38,7 @@ TOL = {  # key: (kind, tolerance)
     "t3_s": ("abs", 0.02),
     "tf_s": ("abs", 0.05),
     "volume_change_pct": ("abs", 0.1),
-    "max_p_granular_ratio": ("rel", 0.01),
+    "max_p_granular_ratio": ("rel", 0.02),
     "slope_back_deg": ("abs", 1.0),
     "slope_front_deg": ("abs", 1.0),
     "front_angle_deg": ("abs", 1.0),

@@ -364,9 +364,28 @@ StepStats Stepper::step(State& s, double dt) {
       }
       st.fp_iters = k;
       st.fp_change = ch;
-      if (fp_monitor_)
-        PetscPrintf(g_.comm(), "  fixed point step %lld iteration %d change %.6e  |du~| %.3e m/s (max |u~| %.3e)\n",
-                    s.step + 1, k, ch, (double)du, (double)un);
+      if (fp_monitor_) {
+        // Also the root-mean-square change of S over the cells where it changed by more than
+        // 1e-12 and how many they are (is the max norm carried by a few cells?).
+        const PetscScalar* a;
+        const PetscScalar* b;
+        PetscInt len;
+        GF_PETSC(VecGetLocalSize(gS_, &len));
+        GF_PETSC(VecGetArrayRead(gS_, &a));
+        GF_PETSC(VecGetArrayRead(s.S, &b));
+        double loc[3] = {0, 0, 0}, glob[3];
+        for (PetscInt q = 0; q < len; ++q) {
+          const double d = std::abs(a[q] - b[q]);
+          if (d > 1e-12) { loc[0] += d * d; loc[1] += 1; }
+          if (d > 0.1 * ch) loc[2] += 1;
+        }
+        GF_PETSC(VecRestoreArrayRead(s.S, &b));
+        GF_PETSC(VecRestoreArrayRead(gS_, &a));
+        MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, g_.comm());
+        PetscPrintf(g_.comm(), "  fixed point step %lld iteration %d change %.6e  |du~| %.3e m/s (max |u~| %.3e)  rms %.3e over %.0f values, %.0f above max/10\n",
+                    s.step + 1, k, ch, (double)du, (double)un,
+                    std::sqrt(glob[0] / std::max(glob[1], 1.0)), glob[1], glob[2]);
+      }
       // Safeguard: the projections make the map non-smooth (active sets change); when the
       // residual grows, the extrapolation is dropped (history reset) and the plain step taken.
       const bool grew = ch > reset_ratio_ * last_ch;
