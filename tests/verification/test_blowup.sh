@@ -96,6 +96,21 @@ done
 if [[ -n "$msg" ]]; then bad "fixed point not converging:$msg"; sed 's/^/      | /' "$tmp/fp.log"
 else ok "fixed point not converging: exit 4: $(grep -o 'the run failed: .*' "$tmp/fp.log" | cut -c1-120)"; fi
 
+# --- 5. a pressure solve whose CG breaks down (a preconditioner made indefinite on purpose:
+#        BoomerAMG with Jacobi smoothing over-relaxed by 3) is solved again with GMRES; when that
+#        fails too, the run stops and says both were tried.
+rc=0
+"$bin" run "${D[@]}" --set time.t_end=0.05 --out "$tmp/pres" -- \
+  -pres_pc_hypre_boomeramg_relax_type_all Jacobi -pres_pc_hypre_boomeramg_relax_weight_all 3 \
+  > "$tmp/pres.log" 2>&1 || rc=$?
+msg=""
+[[ $rc == 4 ]] || msg+=" exit $rc (expected 4);"
+for p in "pressure solve (prefix -pres_) did not converge" "(CG, then GMRES)"; do
+  grep -qF -- "$p" "$tmp/pres.log" || msg+=" message lacks '$p';"
+done
+if [[ -n "$msg" ]]; then bad "pressure CG breakdown:$msg"; sed 's/^/      | /' "$tmp/pres.log"
+else ok "pressure CG breakdown -> GMRES -> failure: exit 4: $(grep -o 'the run failed: .*' "$tmp/pres.log" | cut -c1-120)"; fi
+
 echo "time: $((SECONDS - start)) s"
 if ((fails)); then echo "$fails check(s) failed"; exit 1; fi
 echo "all failure-handling checks passed"
