@@ -1239,12 +1239,15 @@ std::string describe_case(const CaseConfig& c, int nranks) {
   double steps = std::ceil(c.time.t_end / dt - 1e-9);
   const bool capped = c.time.max_steps > 0 && steps > static_cast<double>(c.time.max_steps);
   if (capped) steps = static_cast<double>(c.time.max_steps);
-  const double seconds = static_cast<double>(cells) * steps * kSecondsPerCellStep / nranks;
+  bool plastic = c.rheology.yield != CaseConfig::Yield::None;
+  for (const auto& w : c.walls) plastic = plastic || w.friction_angle_deg > 0;
+  const double per = plastic ? kSecondsPerCellStepPlastic : kSecondsPerCellStep;
+  const double seconds = static_cast<double>(cells) * steps * per / nranks;
   os << "estimate   " << g4(steps) << " steps (" << (capped ? "time.max_steps" : "t_end / first dt")
      << "); run time about " << g4(seconds) << " s (" << g4(seconds / 3600) << " h) on " << nranks
      << (nranks == 1 ? " rank" : " ranks")
-     << "\n           (an estimate: " << g4(kSecondsPerCellStep)
-     << " s per cell per step on one core, perfect scaling assumed;\n"
+     << "\n           (an estimate: " << g4(per) << " s per cell per step on one core"
+     << (plastic ? " with the fixed point of eq. 31" : "") << ", perfect scaling assumed;\n"
         "           adaptive steps and solver iterations change the real cost)\n";
   for (const auto& w : c.warnings) os << "warning    " << w << "\n";
   return os.str();

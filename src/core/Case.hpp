@@ -192,8 +192,11 @@ void print_case_help(std::ostream& os);
 // and run time on `nranks` ranks.
 std::string describe_case(const CaseConfig& c, int nranks);
 // Cost model of describe_case: wall seconds per cell per time step on one core. An estimate
-// (pressure and viscous solves dominate; measured orders of magnitude, not a promise).
+// (measured orders of magnitude, not a promise): Newtonian phases (one viscous and one pressure
+// solve per step), and a viscoplastic phase or Coulomb walls, whose fixed point of eq. 31 costs
+// 20-30 viscous solves per step (case A at n = 64: ~85 s for 1061 steps, docs/PERFORMANCE.md).
 inline constexpr double kSecondsPerCellStep = 1.5e-6;
+inline constexpr double kSecondsPerCellStepPlastic = 5e-6;
 
 // The velocity scale U of the case, m/s: |omega| R or the vortex peak for a prescribed flow;
 // otherwise the largest of sqrt(|g| H) (H = top of the initial granular region, two-phase
