@@ -15,6 +15,7 @@
 
 #include "core/Case.hpp"
 #include "core/Error.hpp"
+#include "core/Version.hpp"
 #include "core/Log.hpp"
 #include "core/Signal.hpp"
 #include "fields/Fields.hpp"
@@ -40,7 +41,7 @@ std::string provenance_block(const gf::CaseConfig& c, int argc_all, char** argv_
   std::ostringstream f;
   f << title << "command:";
   for (int i = 0; i < argc_all; ++i) f << ' ' << argv_all[i];
-  f << "\ngranflow version: " << GRANFLOW_GIT_HASH << "\nMPI ranks: " << nranks
+  f << "\ngranflow version: " << gf::git_version() << "\nMPI ranks: " << nranks
     << "\ncase file: " << c.source << "\n";
   char* opts = nullptr;
   PetscOptionsGetAll(nullptr, &opts);

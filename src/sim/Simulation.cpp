@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/Error.hpp"
+#include "core/Version.hpp"
 #include "core/Profile.hpp"
 #include "core/Log.hpp"
 #include "core/Signal.hpp"
@@ -84,7 +85,7 @@ std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, bool pres
 void Simulation::save_checkpoint(const std::string& reason) {
   io::CheckpointHeader h;
   const Box& b = g_.box();
-  h.set_text("version", GRANFLOW_GIT_HASH);
+  h.set_text("version", gf::git_version());
   h.set_text("reason", reason);
   h.set("ranks", static_cast<long long>(g_.size()));
   h.set("grid.nx", static_cast<long long>(b.nx));
@@ -346,7 +347,7 @@ RunSummary Simulation::run() {
     io::JsonObject js;
     js.set("title", rc_.title)
         .set("status", status)
-        .set("version", std::string(GRANFLOW_GIT_HASH))
+        .set("version", std::string(gf::git_version()))
         .set("ranks", static_cast<long long>(g_.size()))
         .set("nx", static_cast<long long>(g_.nx()))
         .set("ny", static_cast<long long>(g_.ny()))
