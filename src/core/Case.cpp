@@ -203,7 +203,13 @@ Params case_params() {
              "e.g. a lid-driven cavity.");
   p.add_real("levelset.eps_cells", "cells", 1.5, Range::open_closed(0, 5),
              "Half-width eps of the smoothed Heaviside H_eps (section 3.1, eq. 25), in cells: "
-             "eps = eps_cells h.");
+             "eps = eps_cells h; the paper does not give it. A trade-off "
+             "(docs/LEVELSET_VOLUME.md): cells with 0 < phi < eps are heavy but have no yield "
+             "stress (kappa is sharp in sign(phi)), and after a collapse stops that band slides "
+             "along the deposit and takes level-set volume with it, so the paper's cases use "
+             "1.0 (case A, n = 64: volume change -0.5 % against -3.0 % with 1.5); but a narrower "
+             "band puts a large yield stress at a free surface (Bingham) next to light faces, "
+             "and the Coulomb block then slides 22-35 % too fast with 1.0 (2 % with 1.5).");
   p.add_int("levelset.redistance_every", "steps", 5, closed(0, 1e6),
             "Redistance phi every this many steps; 0 = never.");
   p.add_int("levelset.redistance_iters", "", 10, closed(1, 1000),
