@@ -65,6 +65,16 @@ class Predictor {
   // reach the cells as the mean of their four corners; the node Sxy is the shear stress at the
   // node itself, wall nodes included on no-slip walls). kappa at a node: the mean of its cells.
   void add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs, Vec S_node = nullptr);
+  // Limits add_plastic and the cell part of strain_rate to a rectangle of cells [i0, i1) x
+  // [j0, j1) (global indices): the granular region with a margin, where the plastic terms and
+  // D(u~) for the projections live (set by the stepper once per step, from the cells with
+  // kappa > 0 or phi < 0 widened by 2 cells; the faces outside get no plastic term there).
+  // Outside it strain_rate leaves D as it was: callers that read D everywhere call
+  // clear_plastic_region() first. Without the node copy only.
+  void set_plastic_region(PetscInt i0, PetscInt i1, PetscInt j0, PetscInt j1) {
+    reg_ = {i0, i1, j0, j1};
+  }
+  void clear_plastic_region() { reg_ = {-1000000000, 1000000000, -1000000000, 1000000000}; }
   // D(u) at the cell centres (dm_ten: Dxx, Dxy, Dyy), with the shear at wall nodes from the
   // wall condition (no slip, Navier: from the wall velocity; free slip, Coulomb: zero).
   // D_node (dm_node, optional): D(u) at the nodes for the node copy of S: Dxy = half the node
@@ -98,6 +108,9 @@ class Predictor {
   Mat matrix() const { return A_; }
 
  private:
+  struct Region {
+    PetscInt i0, i1, j0, j1;
+  } reg_{-1000000000, 1000000000, -1000000000, 1000000000};
   const Grid& g_;
   Boundaries bc_;
   Mat A_ = nullptr;

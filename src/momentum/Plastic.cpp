@@ -116,8 +116,11 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs, 
   auto shear = [&](double cell_part, PetscInt i, PetscInt j) {
     return sn ? wc * cell_part + (1 - wc) * kSn(i, j, 1) : cell_part;
   };
-  for (PetscInt j = b.ys; j < b.ye(); ++j)
-    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+  const bool whole = S_node != nullptr;  // the node copy spreads kappa to every node
+  const PetscInt ja = whole ? b.ys : std::max(b.ys, reg_.j0), jb = whole ? b.ye() : std::min(b.ye(), reg_.j1);
+  const PetscInt ia = whole ? b.xs : std::max(b.xs, reg_.i0), ib = whole ? b.xe() : std::min(b.xe(), reg_.i1);
+  for (PetscInt j = ja; j < jb; ++j)
+    for (PetscInt i = ia; i < ib; ++i) {
       if (!b.wall_u(i)) {  // x-momentum on the face (i, j)
         double f = (cell_n(i, j, 0) - cell_n(i - 1, j, 0)) / b.hx;
         // top node (i, j+1)
@@ -200,8 +203,10 @@ void Predictor::strain_rate(Vec vel, Vec eta, Vec D, Vec D_node) {
                              coulomb_face(ph, left ? 0 : 1, ic, j));
     return left ? (vc - vw) / (0.5 * b.hx) : (vw - vc) / (0.5 * b.hx);
   };
-  for (PetscInt j = b.ys; j < b.ye(); ++j)
-    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+  const PetscInt ja = std::max(b.ys, reg_.j0), jb = std::min(b.ye(), reg_.j1);
+  const PetscInt ia = std::max(b.xs, reg_.i0), ib = std::min(b.xe(), reg_.i1);
+  for (PetscInt j = ja; j < jb; ++j)
+    for (PetscInt i = ia; i < ib; ++i) {
       const double dxx = (v[j][i + 1].u - v[j][i].u) / b.hx;
       const double dyy = (v[j + 1][i].v - v[j][i].v) / b.hy;
       const double dxy =

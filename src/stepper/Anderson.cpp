@@ -1,90 +1,82 @@
 #include "stepper/Anderson.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/Error.hpp"
 
 namespace gf {
 
-Anderson::Anderson(const std::vector<Vec>& templates, int m) : m_(m), nb_(templates.size()) {
-  if (m_ <= 0) return;
-  f_prev_.resize(nb_);
-  g_prev_.resize(nb_);
-  f_cur_.resize(nb_);
-  dF_.assign(nb_, nullptr);
-  dG_.assign(nb_, nullptr);
-  for (size_t b = 0; b < nb_; ++b) {
-    GF_PETSC(VecDuplicate(templates[b], &f_prev_[b]));
-    GF_PETSC(VecDuplicate(templates[b], &g_prev_[b]));
-    GF_PETSC(VecDuplicate(templates[b], &f_cur_[b]));
-    GF_PETSC(VecDuplicateVecs(templates[b], m_, &dF_[b]));
-    GF_PETSC(VecDuplicateVecs(templates[b], m_, &dG_[b]));
-  }
-  gram_.assign(static_cast<size_t>(m_) * m_, 0.0);
-  GF_PETSC(PetscObjectGetComm(reinterpret_cast<PetscObject>(templates[0]), &comm_));
+Anderson::Anderson(int m, MPI_Comm comm) : m_(m), comm_(comm) {
+  if (m_ > 0) gram_.assign(static_cast<size_t>(m_) * m_, 0.0);
 }
 
-Anderson::~Anderson() {
-  if (m_ <= 0) return;
-  for (size_t b = 0; b < nb_; ++b) {
-    VecDestroy(&f_prev_[b]);
-    VecDestroy(&g_prev_[b]);
-    VecDestroy(&f_cur_[b]);
-    VecDestroyVecs(m_, &dF_[b]);
-    VecDestroyVecs(m_, &dG_[b]);
+void Anderson::set_active(std::vector<std::vector<PetscInt>> idx) {
+  idx_ = std::move(idx);
+  n_ = 0;
+  for (const auto& v : idx_) n_ += v.size();
+  if (m_ > 0) {
+    for (auto* v : {&f_cur_, &f_prev_, &g_prev_, &g_cur_}) v->resize(n_);
+    dF_.resize(n_ * m_);
+    dG_.resize(n_ * m_);
   }
+  reset();
 }
 
 void Anderson::update(const std::vector<Vec>& x, const std::vector<Vec>& g) {
+  if (x.size() != idx_.size() || g.size() != idx_.size())
+    throw std::logic_error("Anderson::update: the blocks differ from those of set_active");
   if (m_ <= 0) {
-    for (size_t b = 0; b < nb_; ++b) GF_PETSC(VecCopy(g[b], x[b]));
+    for (size_t b = 0; b < x.size(); ++b) GF_PETSC(VecCopy(g[b], x[b]));
     return;
   }
-  // f_k = g - x
-  for (size_t b = 0; b < nb_; ++b) GF_PETSC(VecWAXPY(f_cur_[b], -1.0, x[b], g[b]));
+  // G(x_k) and f_k = G(x_k) - x_k on the active entries.
+  size_t o = 0;
+  for (size_t b = 0; b < x.size(); ++b) {
+    const PetscScalar *xa, *ga;
+    GF_PETSC(VecGetArrayRead(x[b], &xa));
+    GF_PETSC(VecGetArrayRead(g[b], &ga));
+    for (const PetscInt q : idx_[b]) {
+      g_cur_[o] = ga[q];
+      f_cur_[o] = ga[q] - xa[q];
+      ++o;
+    }
+    GF_PETSC(VecRestoreArrayRead(g[b], &ga));
+    GF_PETSC(VecRestoreArrayRead(x[b], &xa));
+  }
   int slot = -1;     // the ring-buffer slot written by this update (-1: none)
   if (have_prev_) {  // push dF = f_k - f_{k-1}, dG = g_k - g_{k-1}
     slot = head_;
-    for (size_t b = 0; b < nb_; ++b) {
-      GF_PETSC(VecWAXPY(dF_[b][slot], -1.0, f_prev_[b], f_cur_[b]));
-      GF_PETSC(VecWAXPY(dG_[b][slot], -1.0, g_prev_[b], g[b]));
+    double* dFs = dF_.data() + slot * n_;
+    double* dGs = dG_.data() + slot * n_;
+    for (size_t q = 0; q < n_; ++q) {
+      dFs[q] = f_cur_[q] - f_prev_[q];
+      dGs[q] = g_cur_[q] - g_prev_[q];
     }
     head_ = (head_ + 1) % m_;
     if (count_ < m_) ++count_;
   }
-  for (size_t b = 0; b < nb_; ++b) {
-    GF_PETSC(VecCopy(f_cur_[b], f_prev_[b]));
-    GF_PETSC(VecCopy(g[b], g_prev_[b]));
-  }
+  std::copy(f_cur_.begin(), f_cur_.end(), f_prev_.begin());
+  std::copy(g_cur_.begin(), g_cur_.end(), g_prev_.begin());
   have_prev_ = true;
   // x_{k+1} = g - dG gamma, gamma from the normal equations (dF^T dF + eps I) gamma = dF^T f:
   // m is small (<= 10); the regularisation guards against nearly dependent differences.
+  for (size_t b = 0; b < x.size(); ++b) GF_PETSC(VecCopy(g[b], x[b]));
   const int n = count_;  // the stored slots are 0 .. n-1
-  for (size_t b = 0; b < nb_; ++b) GF_PETSC(VecCopy(g[b], x[b]));
   if (n == 0) return;
-  // Local parts of dF_i . f (n values) and, for the new slot, dF_slot . dF_j (n values), then
+  // Local parts of dF_j . f (n values) and, for the new slot, dF_slot . dF_j (n values), then
   // one reduction for all of them.
   std::vector<double> loc(2 * n, 0.0), glob(2 * n, 0.0);
-  for (size_t b = 0; b < nb_; ++b) {
-    PetscInt len;
-    GF_PETSC(VecGetLocalSize(f_cur_[b], &len));
-    const PetscScalar* f;
-    GF_PETSC(VecGetArrayRead(f_cur_[b], &f));
-    const PetscScalar* fs = nullptr;
-    if (slot >= 0) GF_PETSC(VecGetArrayRead(dF_[b][slot], &fs));
-    for (int j = 0; j < n; ++j) {
-      const PetscScalar* dj;
-      GF_PETSC(VecGetArrayRead(dF_[b][j], &dj));
-      double sf = 0, ss = 0;
-      for (PetscInt q = 0; q < len; ++q) sf += dj[q] * f[q];
-      if (fs)
-        for (PetscInt q = 0; q < len; ++q) ss += dj[q] * fs[q];
-      loc[j] += sf;
-      loc[n + j] += ss;
-      GF_PETSC(VecRestoreArrayRead(dF_[b][j], &dj));
-    }
-    if (fs) GF_PETSC(VecRestoreArrayRead(dF_[b][slot], &fs));
-    GF_PETSC(VecRestoreArrayRead(f_cur_[b], &f));
+  const double* fs = slot >= 0 ? dF_.data() + slot * n_ : nullptr;
+  for (int j = 0; j < n; ++j) {
+    const double* dj = dF_.data() + j * n_;
+    double sf = 0, ss = 0;
+    for (size_t q = 0; q < n_; ++q) sf += dj[q] * f_cur_[q];
+    if (fs)
+      for (size_t q = 0; q < n_; ++q) ss += dj[q] * fs[q];
+    loc[j] = sf;
+    loc[n + j] = ss;
   }
   MPI_Allreduce(loc.data(), glob.data(), 2 * n, MPI_DOUBLE, MPI_SUM, comm_);
   std::vector<double> rhs(glob.begin(), glob.begin() + n);
@@ -99,7 +91,6 @@ void Anderson::update(const std::vector<Vec>& x, const std::vector<Vec>& g) {
   for (int i = 0; i < n; ++i) A[i * n + i] += 1e-12 * trace / n;
   // Cholesky-free Gaussian elimination with partial pivoting on the small SPD system.
   std::vector<double> gam(rhs);
-  std::vector<int> piv(n);
   for (int c = 0; c < n; ++c) {
     int p = c;
     for (int r = c + 1; r < n; ++r)
@@ -119,9 +110,19 @@ void Anderson::update(const std::vector<Vec>& x, const std::vector<Vec>& g) {
     for (int k = c + 1; k < n; ++k) gam[c] -= A[c * n + k] * gam[k];
     gam[c] /= A[c * n + c];
   }
-  std::vector<PetscScalar> neg(n);
-  for (int i = 0; i < n; ++i) neg[i] = -gam[i];
-  for (size_t b = 0; b < nb_; ++b) GF_PETSC(VecMAXPY(x[b], n, neg.data(), dG_[b]));
+  // dG gamma on the active entries (f_cur_ is free now and holds it), subtracted from x.
+  std::fill(f_cur_.begin(), f_cur_.end(), 0.0);
+  for (int i = 0; i < n; ++i) {
+    const double* di = dG_.data() + i * n_;
+    for (size_t q = 0; q < n_; ++q) f_cur_[q] += gam[i] * di[q];
+  }
+  o = 0;
+  for (size_t b = 0; b < x.size(); ++b) {
+    PetscScalar* xa;
+    GF_PETSC(VecGetArray(x[b], &xa));
+    for (const PetscInt q : idx_[b]) xa[q] -= f_cur_[o++];
+    GF_PETSC(VecRestoreArray(x[b], &xa));
+  }
 }
 
 }  // namespace gf

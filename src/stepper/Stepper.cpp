@@ -46,9 +46,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   const bool node = plastic_ && cfg_.rheo.node_copy;
   if (node)
     for (Vec* v : {&Dn_, &Sn_n_, &gSn_}) GF_PETSC(DMCreateGlobalVector(g.dm_node(), v));
-  if (plastic_ && m > 0)
-    anderson_ = std::make_unique<Anderson>(
-        node ? std::vector<Vec>{gS_, gW_, gSn_} : std::vector<Vec>{gS_, gW_}, m);
+  if (plastic_ && m > 0) anderson_ = std::make_unique<Anderson>(static_cast<int>(m), g.comm());
   if (fp_monitor_ || cfg_.rheo.fp_tol_u > 0) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &rhs0_mon_));
   for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_, &rho_r_, &eta_r_})
     GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
@@ -191,6 +189,34 @@ void Stepper::update_yield(State& s) {
   predictor_->wall_yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
 }
 
+std::vector<std::vector<PetscInt>> Stepper::anderson_active(bool node) const {
+  const Box& b = g_.box();
+  std::vector<std::vector<PetscInt>> idx(node ? 3 : 2);
+  const PetscScalar *k, *sn, *wn;
+  GF_PETSC(VecGetArrayRead(kappa_, &k));
+  GF_PETSC(VecGetArrayRead(S_n_, &sn));
+  GF_PETSC(VecGetArrayRead(sw_n_, &wn));
+  for (PetscInt j = b.ys, c = 0; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i, ++c) {
+      if (k[c] > 0 || sn[3 * c] != 0 || sn[3 * c + 1] != 0 || sn[3 * c + 2] != 0)
+        for (PetscInt q = 0; q < 3; ++q) idx[0].push_back(3 * c + q);
+      // s_t: u on the bottom and top faces, v on the left and right ones (update_wall).
+      if (((j == 0 || j == b.ny - 1) && !b.wall_u(i)) || wn[2 * c] != 0) idx[1].push_back(2 * c);
+      if ((!b.periodic_x && (i == 0 || i == b.nx - 1) && j >= 1) || wn[2 * c + 1] != 0)
+        idx[1].push_back(2 * c + 1);
+    }
+  GF_PETSC(VecRestoreArrayRead(sw_n_, &wn));
+  GF_PETSC(VecRestoreArrayRead(S_n_, &sn));
+  GF_PETSC(VecRestoreArrayRead(kappa_, &k));
+  if (node) {
+    PetscInt len;
+    GF_PETSC(VecGetLocalSize(gSn_, &len));
+    idx[2].resize(len);
+    for (PetscInt q = 0; q < len; ++q) idx[2][q] = q;
+  }
+  return idx;
+}
+
 momentum::Predictor::WallContact Stepper::wall_contact(const State& s) const {
   if (!predictor_ || !predictor_->has_wall_friction()) return {};
   return predictor_->wall_contact(s.s_wall, kappa_b_);
@@ -321,7 +347,40 @@ StepStats Stepper::step(State& s, double dt) {
     const bool node = cfg_.rheo.node_copy;
     if (node) GF_PETSC(VecCopy(s.S_node, Sn_n_));
     const double theta = std::min(0.5, cfg_.rheo.theta_per_dt * dt);
-    if (anderson_) anderson_->reset();
+    if (anderson_) anderson_->set_active(anderson_active(node));
+    // The plastic terms and D(u~) only where the granular phase is (kappa > 0 or phi < 0),
+    // widened by 2 cells for the stencils of the faces, nodes and wall extrapolations around
+    // it: in case A that is 20-50 % of the domain.
+    struct RegionGuard {
+      momentum::Predictor* p;
+      ~RegionGuard() { p->clear_plastic_region(); }
+    } region_guard{predictor_.get()};
+    {
+      const Box& b = g_.box();
+      PetscInt lo[2] = {b.nx, b.ny}, hi[2] = {-1, -1};  // min i, j and max i, j (as -min -i...)
+      const PetscScalar *k, *ph;
+      GF_PETSC(VecGetArrayRead(kappa_, &k));
+      GF_PETSC(VecGetArrayRead(s.phi, &ph));
+      for (PetscInt j = b.ys, c = 0; j < b.ye(); ++j)
+        for (PetscInt i = b.xs; i < b.xe(); ++i, ++c)
+          if (k[c] > 0 || ph[c] < 0) {
+            lo[0] = std::min(lo[0], i);
+            lo[1] = std::min(lo[1], j);
+            hi[0] = std::max(hi[0], i);
+            hi[1] = std::max(hi[1], j);
+          }
+      GF_PETSC(VecRestoreArrayRead(s.phi, &ph));
+      GF_PETSC(VecRestoreArrayRead(kappa_, &k));
+      PetscInt glo[2], ghi[2];
+      MPI_Allreduce(lo, glo, 2, MPIU_INT, MPI_MIN, g_.comm());
+      MPI_Allreduce(hi, ghi, 2, MPIU_INT, MPI_MAX, g_.comm());
+      if (ghi[0] >= 0 && !b.periodic_x)
+        predictor_->set_plastic_region(glo[0] - 2, ghi[0] + 3, glo[1] - 2, ghi[1] + 3);
+      else if (ghi[0] >= 0)
+        predictor_->set_plastic_region(-1000000000, 1000000000, glo[1] - 2, ghi[1] + 3);
+      else
+        predictor_->set_plastic_region(0, 0, 0, 0);  // no granular cell: no plastic term
+    }
     double last_ch = std::numeric_limits<double>::infinity();
     for (int k = 1; k <= cfg_.rheo.fp_max_iter; ++k) {
       GF_PETSC(VecCopy(rhs0_, rhs_));

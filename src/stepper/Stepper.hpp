@@ -8,6 +8,7 @@
 // This is the only code that calls all the layers; diagnostics and output live in sim/.
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "boundary/Boundary.hpp"
 #include "fields/Fields.hpp"
@@ -112,6 +113,10 @@ class Stepper {
   Vec rho_r_ = nullptr, eta_r_ = nullptr;
   void update_yield(State& s);
   void mu_i_viscosity(State& s);
+  // The entries of (S, s_t[, S_node]) that can be non-zero in this step's fixed point, as local
+  // indices per block (Anderson::set_active): S where kappa > 0 or S^n != 0, s_t on the wall
+  // faces (or where s_t^n != 0), the node copy everywhere.
+  std::vector<std::vector<PetscInt>> anderson_active(bool node) const;
   Vec eta_node_ = nullptr, rhs_ = nullptr, u_tilde_ = nullptr, lphi_ = nullptr;
 };
 
