@@ -112,6 +112,8 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.mu_cap_max", lp_.mu_cap_max);
   h.set("loop.restarts", lp_.restarts);
   h.set("loop.max_fp_iters", lp_.max_fp_iters);
+  h.set("loop.fp_iters_total", lp_.fp_iters_total);
+  h.set("loop.visc_its_total", lp_.visc_its_total);
   if (collapse_) collapse_->save(h);
   const StepStats& l = lp_.last;
   h.set("last.visc_its", l.visc_its);
@@ -183,6 +185,8 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   lp_.mu_cap_max = h.get_int("loop.mu_cap_max");
   lp_.restarts = h.get_int("loop.restarts") + 1;
   lp_.max_fp_iters = static_cast<int>(h.get_int("loop.max_fp_iters"));
+  lp_.fp_iters_total = h.has("loop.fp_iters_total") ? h.get_int("loop.fp_iters_total") : 0;
+  lp_.visc_its_total = h.has("loop.visc_its_total") ? h.get_int("loop.visc_its_total") : 0;
   StepStats& l = lp_.last;
   l.visc_its = static_cast<int>(h.get_int("last.visc_its"));
   l.pres_its = static_cast<int>(h.get_int("last.pres_its"));
@@ -362,6 +366,8 @@ RunSummary Simulation::run() {
         .set("max_speed", diag::max_speed(g_, s_.vel))
         .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho))
         .set("max_fp_iters", static_cast<long long>(lp_.max_fp_iters))
+        .set("fp_iters_total", lp_.fp_iters_total)
+        .set("visc_its_total", lp_.visc_its_total)
         .set("warnings_fp_capped_steps", lp_.fp_capped_steps)
         .set("fp_capped_max_change", lp_.fp_capped_change)
         .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
@@ -471,6 +477,8 @@ RunSummary Simulation::run() {
     lp_.mu_floor_max = std::max(lp_.mu_floor_max, last.mu_i_floor_cells);
     lp_.mu_cap_max = std::max(lp_.mu_cap_max, last.mu_i_cap_cells);
     lp_.max_fp_iters = std::max(lp_.max_fp_iters, last.fp_iters);
+    lp_.fp_iters_total += last.fp_iters;
+    lp_.visc_its_total += last.visc_its;
     lp_.dt_prev = dt;
 
     // 1. Failure detection: a non-finite value in any prognostic field, or a speed no flow of

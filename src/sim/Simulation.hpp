@@ -96,6 +96,7 @@ class Simulation {
     long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
     long long restarts = 0;
     int max_fp_iters = 0;
+    long long fp_iters_total = 0, visc_its_total = 0;  // sums over the steps (cost measures)
     StepStats last;                  // the last step's statistics (diagnostics columns)
   };
   void save_checkpoint(const std::string& reason);
