@@ -31,9 +31,13 @@ class Projector {
   int project(Vec vel, Vec p, Vec rho, double a0, double dt);
   // Whether the last project() had to solve again with GMRES after CG broke down.
   bool fell_back() const { return fell_back_; }
+  // Whether the preconditioner is hypre PFMG on a MATHYPRESTRUCT matrix (the default).
+  bool pfmg() const { return pfmg_; }
 
  private:
   const Grid& g_;
+  bool pfmg_ = false;
+  DM dm_struct_ = nullptr;  // PFMG only: the nx x ny x 1 DMDA of the MATHYPRESTRUCT matrix
   Mat M_ = nullptr;
   KSP ksp_ = nullptr;
   MatNullSpace null_ = nullptr;
