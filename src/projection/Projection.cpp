@@ -147,8 +147,9 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
   GF_PETSC(KSPGetType(ksp_, &type));
   const bool cg = std::string(type) == KSPCG;
   if (cg && (reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_BREAKDOWN)) {
-    // CG needs a symmetric positive definite preconditioner. BoomerAMG on this singular
-    // (Neumann) operator is one in practice but not always: HP case B at n = 64 met
+    // CG needs a symmetric positive definite preconditioner (PFMG with its default weighted
+    // Jacobi smoother is symmetric; the fallback serves whatever -pres_pc_type chose).
+    // BoomerAMG on this singular (Neumann) operator is one in practice but not always: HP case B at n = 64 met
     // DIVERGED_INDEFINITE_PC at t = 1.58 s. GMRES does not need it, so the step is solved again
     // with GMRES and the same preconditioner (counted in summary.json); CG stays the default.
     GF_PETSC(KSPSetType(ksp_, KSPGMRES));
@@ -165,8 +166,8 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
     throw RunError("pressure solve (prefix -pres_) did not converge: " +
                    std::string(KSPConvergedReasons[reason]) + " after " + std::to_string(its) +
                    " iterations" + (fell_back_ ? " (CG, then GMRES)" : "") +
-                   "; try another preconditioner (e.g. -pres_pc_type gamg) or a smaller time "
-                   "step (time.cfl, time.dt_max)");
+                   "; try another preconditioner (e.g. -pres_pc_type hypre for BoomerAMG, or gamg) "
+                   "or a smaller time step (time.cfl, time.dt_max)");
 
   // Velocity correction u = u~ - (dt/a0) (1/rho_face) grad psi on the interior faces.
   GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), psi_, INSERT_VALUES, lpsi_));
