@@ -8,9 +8,53 @@
 namespace gf::projection {
 
 Projector::Projector(const Grid& g, double rtol) : g_(g) {
-  GF_PETSC(DMCreateMatrix(g.dm_pres(), &M_));
-  GF_PETSC(MatSetOption(M_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  // The preconditioner is chosen before the matrix because PFMG needs its own matrix type. Only
+  // -pres_pc_type is looked at here; the rest of the -pres_ options reach the KSP below.
+  char pc_type[64] = "";
+  PetscBool pc_set = PETSC_FALSE;
+  GF_PETSC(PetscOptionsGetString(nullptr, "pres_", "-pc_type", pc_type, sizeof pc_type, &pc_set));
+  const bool want_pfmg = !pc_set || std::string(pc_type) == PCPFMG;
+  // PETSc 3.18's MATHYPRESTRUCT refuses any DMDA boundary type but DM_BOUNDARY_NONE ("Ask us
+  // to add periodic support by calling HYPRE_StructGridSetPeriodic()"), so a periodic grid keeps
+  // the AIJ matrix and BoomerAMG.
+  if (want_pfmg && g.periodic_x() && pc_set)
+    throw InputError("-pres_pc_type pfmg: PFMG (MATHYPRESTRUCT) has no periodic support in PETSc "
+                     "3.18 (boundary.periodic_x = true); use -pres_pc_type hypre");
+  pfmg_ = want_pfmg && !g.periodic_x();
+
+  if (pfmg_) {
+    // MATHYPRESTRUCT exists only for a 3D DMDA: nx x ny x 1 cells, star stencil of width 1,
+    // with the processor grid and ownership ranges of the cell DM. Its global vectors then have
+    // the local layout of dm_cell's (i fastest, then j; k = 0 only), so the Vecs of dm_cell
+    // (rhs_, psi_) go to KSPSolve as they are: MatMult and PCApply of hypre copy the local
+    // array with HYPRE_StructVector{Set,Get}BoxValues over the owned box. No scatter, no copy.
+    // The boundary is DM_BOUNDARY_NONE (MATHYPRESTRUCT rejects GHOSTED): no ghost rows exist
+    // beyond the walls and the wall stencil entries stay zero.
+    PetscInt px, py;
+    const PetscInt *lx, *ly;
+    GF_PETSC(DMDAGetInfo(g.dm_cell(), nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr,
+                         nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+    GF_PETSC(DMDAGetOwnershipRanges(g.dm_cell(), &lx, &ly, nullptr));
+    const PetscInt lz[1] = {1};
+    GF_PETSC(DMDACreate3d(g.comm(), DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE,
+                          DMDA_STENCIL_STAR, g.nx(), g.ny(), 1, px, py, 1, 1, 1, lx, ly, lz,
+                          &dm_struct_));
+    GF_PETSC(DMSetMatType(dm_struct_, MATHYPRESTRUCT));
+    GF_PETSC(DMSetUp(dm_struct_));
+    PetscInt xs, ys, zs, xm, ym, zm;
+    GF_PETSC(DMDAGetCorners(dm_struct_, &xs, &ys, &zs, &xm, &ym, &zm));
+    const Box& b = g.box();
+    if (xs != b.xs || ys != b.ys || xm != b.xm || ym != b.ym || zs != 0 || zm != 1)
+      throw RunError("projection: the PFMG DMDA does not have the layout of the cell DM");
+    GF_PETSC(DMCreateMatrix(dm_struct_, &M_));
+  } else {
+    GF_PETSC(DMCreateMatrix(g.dm_pres(), &M_));
+    GF_PETSC(MatSetOption(M_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  }
   GF_PETSC(MatSetOption(M_, MAT_SYMMETRIC, PETSC_TRUE));
+  // The constants span the null space for both matrix types (MatSetNullSpace is generic; KSP
+  // projects them out of the preconditioned residual). The rhs is made consistent by hand in
+  // project(); the constant part of psi does not matter, the level is set afterwards.
   GF_PETSC(MatNullSpaceCreate(g.comm(), PETSC_TRUE, 0, nullptr, &null_));
   GF_PETSC(MatSetNullSpace(M_, null_));
   GF_PETSC(KSPCreate(g.comm(), &ksp_));
@@ -18,7 +62,7 @@ Projector::Projector(const Grid& g, double rtol) : g_(g) {
   GF_PETSC(KSPSetType(ksp_, KSPCG));
   PC pc;
   GF_PETSC(KSPGetPC(ksp_, &pc));
-  GF_PETSC(PCSetType(pc, PCHYPRE));
+  GF_PETSC(PCSetType(pc, pfmg_ ? PCPFMG : PCHYPRE));
   GF_PETSC(KSPSetTolerances(ksp_, rtol, 1e-50, PETSC_DEFAULT, 1000));
   GF_PETSC(KSPSetFromOptions(ksp_));
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &rhs_));
@@ -33,6 +77,7 @@ Projector::~Projector() {
   MatNullSpaceDestroy(&null_);
   KSPDestroy(&ksp_);
   MatDestroy(&M_);
+  DMDestroy(&dm_struct_);
 }
 
 void Projector::assemble(Vec rho) {
@@ -56,6 +101,8 @@ void Projector::assemble(Vec rho) {
       };
       // Wall faces carry no flux (u.n = 0, eq. 20 and (u^{n+1} - u~).n = 0 in eq. 32). With
       // periodic x, cell 0 couples to cell nx-1 (the column -1 / nx wraps; rho from the ghosts).
+      // The same (i, j, k = 0) stencils fill the AIJ matrix of dm_pres and the MATHYPRESTRUCT
+      // one of the 3D DMDA (PFMG); the z entries of the latter stay zero.
       if (!b.wall_u(i)) add(i - 1, j, ihx2 / ops::rho_xface(r, i, j));
       if (!b.wall_u(i + 1)) add(i + 1, j, ihx2 / ops::rho_xface(r, i + 1, j));
       if (j > 0) add(i, j - 1, ihy2 / ops::rho_yface(r, i, j));
@@ -100,8 +147,9 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
   GF_PETSC(KSPGetType(ksp_, &type));
   const bool cg = std::string(type) == KSPCG;
   if (cg && (reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_BREAKDOWN)) {
-    // CG needs a symmetric positive definite preconditioner. BoomerAMG on this singular
-    // (Neumann) operator is one in practice but not always: HP case B at n = 64 met
+    // CG needs a symmetric positive definite preconditioner (PFMG with its default weighted
+    // Jacobi smoother is symmetric; the fallback serves whatever -pres_pc_type chose).
+    // BoomerAMG on this singular (Neumann) operator is one in practice but not always: HP case B at n = 64 met
     // DIVERGED_INDEFINITE_PC at t = 1.58 s. GMRES does not need it, so the step is solved again
     // with GMRES and the same preconditioner (counted in summary.json); CG stays the default.
     GF_PETSC(KSPSetType(ksp_, KSPGMRES));
@@ -118,8 +166,8 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
     throw RunError("pressure solve (prefix -pres_) did not converge: " +
                    std::string(KSPConvergedReasons[reason]) + " after " + std::to_string(its) +
                    " iterations" + (fell_back_ ? " (CG, then GMRES)" : "") +
-                   "; try another preconditioner (e.g. -pres_pc_type gamg) or a smaller time "
-                   "step (time.cfl, time.dt_max)");
+                   "; try another preconditioner (e.g. -pres_pc_type hypre for BoomerAMG, or gamg) "
+                   "or a smaller time step (time.cfl, time.dt_max)");
 
   // Velocity correction u = u~ - (dt/a0) (1/rho_face) grad psi on the interior faces.
   GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), psi_, INSERT_VALUES, lpsi_));

@@ -8,10 +8,24 @@
 // a0 = 3/2 for the constant-step BDF2 of the paper (momentum/Momentum.hpp).
 //
 // The operator is symmetric positive semi-definite with the constants as null space; it is
-// solved with CG and BoomerAMG by default, options prefix -pres_ (any PETSc KSP/PC can be
-// chosen at run time). The pressure level is fixed by making the mean pressure on the top
-// boundary (extrapolated from the last two rows of cells) zero: the yield stress of the Drucker-Prager model (eq. 19) needs the absolute
-// pressure, and the top of the domain is in the air at the reference (atmospheric) pressure.
+// solved with CG, options prefix -pres_ (any PETSc KSP/PC can be chosen at run time). The
+// pressure level is fixed by making the mean pressure on the top boundary (extrapolated from the
+// last two rows of cells) zero: the yield stress of the Drucker-Prager model (eq. 19) needs the
+// absolute pressure, and the top of the domain is in the air at the reference (atmospheric)
+// pressure.
+//
+// Preconditioner: hypre PFMG (structured-grid multigrid) by default, because the pressure solve
+// was ~25 % of the wall time of case A and PFMG's setup is 3-4x and its solve 1.5x cheaper than
+// BoomerAMG's on this operator (stand-alone, 1 rank, CG to 1e-8, setup/solve seconds:
+// BoomerAMG .007/.007, .024/.038, .106/.20 and PFMG .002/.006, .007/.024, .032/.134 at
+// 256x64, 512x128, 1024x256; 14-15 CG iterations with PFMG against 7-8). In case A at n = 64,
+// t <= 0.2 s, time_Pressure_s went 2.75 -> 1.36 s with the same answers (2e-9 relative with a
+// converged fixed point). PETSc 3.18 offers PFMG only with a MATHYPRESTRUCT matrix on a 3D
+// DMDA: the Projector builds an nx x ny x 1 one with the cell DM's decomposition, so cell Vecs
+// are used by the solver as they are.
+// BoomerAMG back: -pres_pc_type hypre (any pc_type other than pfmg takes the AIJ matrix of
+// dm_pres). Periodic x (boundary.periodic_x) always uses AIJ + BoomerAMG: PETSc 3.18's
+// MATHYPRESTRUCT rejects periodic DMDAs.
 #include <petscksp.h>
 
 #include "grid/Grid.hpp"
@@ -31,9 +45,13 @@ class Projector {
   int project(Vec vel, Vec p, Vec rho, double a0, double dt);
   // Whether the last project() had to solve again with GMRES after CG broke down.
   bool fell_back() const { return fell_back_; }
+  // Whether the preconditioner is hypre PFMG on a MATHYPRESTRUCT matrix (the default).
+  bool pfmg() const { return pfmg_; }
 
  private:
   const Grid& g_;
+  bool pfmg_ = false;
+  DM dm_struct_ = nullptr;  // PFMG only: the nx x ny x 1 DMDA of the MATHYPRESTRUCT matrix
   Mat M_ = nullptr;
   KSP ksp_ = nullptr;
   MatNullSpace null_ = nullptr;
