@@ -24,8 +24,19 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool p
   // Periodic x: the ghost exchange wraps (cell -1 <- cell nx-1, ...), see Grid.hpp.
   const DMBoundaryType bx = periodic_x ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
   const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
-  GF_PETSC(DMDACreate2d(comm, bx, bt, DMDA_STENCIL_BOX, nx, ny, PETSC_DECIDE, PETSC_DECIDE, 1,
-                        kGhost, nullptr, nullptr, &dm_cell_));
+  // The processor grid: PETSc's choice (it splits the longer side: 2 ranks on case A's 4n x n
+  // cut it at x = Lx/2, which leaves all the granular cells, and all the plastic work, on rank
+  // 0) unless -da_processors_x / -da_processors_y ask for another, e.g. 1 x 2 (cut in y).
+  PetscInt pxo = PETSC_DECIDE, pyo = PETSC_DECIDE;
+  GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-da_processors_x", &pxo, nullptr));
+  GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-da_processors_y", &pyo, nullptr));
+  if ((pxo != PETSC_DECIDE && (pxo < 1 || size_ % pxo)) || (pyo != PETSC_DECIDE && (pyo < 1 || size_ % pyo)) ||
+      (pxo != PETSC_DECIDE && pyo != PETSC_DECIDE && pxo * pyo != size_))
+    throw InputError("grid: -da_processors_x = " + std::to_string(pxo) + ", -da_processors_y = " +
+                     std::to_string(pyo) + " do not divide the " + std::to_string(size_) +
+                     " MPI ranks (their product must be the number of ranks)");
+  GF_PETSC(DMDACreate2d(comm, bx, bt, DMDA_STENCIL_BOX, nx, ny, pxo, pyo, 1, kGhost, nullptr,
+                        nullptr, &dm_cell_));
   GF_PETSC(DMSetUp(dm_cell_));
   // All other DMs copy the cell DM's parallel layout so that (i, j) is owned by the same rank.
   PetscInt px, py;

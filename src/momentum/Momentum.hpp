@@ -74,7 +74,13 @@ class Predictor {
   void set_plastic_region(PetscInt i0, PetscInt i1, PetscInt j0, PetscInt j1) {
     reg_ = {i0, i1, j0, j1};
   }
-  void clear_plastic_region() { reg_ = {-1000000000, 1000000000, -1000000000, 1000000000}; }
+  void clear_plastic_region() {
+    reg_ = {-1000000000, 1000000000, -1000000000, 1000000000};
+    wall_cached_ = false;
+  }
+  // Ghosted copies of p, kappa and eta for wall_yield, which the fixed point calls in every
+  // iteration with the same three: made once per step here, used until clear_plastic_region().
+  void cache_wall_inputs(Vec p, Vec kappa, Vec eta);
   // D(u) at the cell centres (dm_ten: Dxx, Dxy, Dyy), with the shear at wall nodes from the
   // wall condition (no slip, Navier: from the wall velocity; free slip, Coulomb: zero).
   // D_node (dm_node, optional): D(u) at the nodes for the node copy of S: Dxy = half the node
@@ -108,6 +114,8 @@ class Predictor {
   Mat matrix() const { return A_; }
 
  private:
+  bool wall_cached_ = false;
+  Vec lwp_ = nullptr, lwk_ = nullptr, lwe_ = nullptr;  // cache_wall_inputs
   struct Region {
     PetscInt i0, i1, j0, j1;
   } reg_{-1000000000, 1000000000, -1000000000, 1000000000};

@@ -259,17 +259,32 @@ void Predictor::strain_rate(Vec vel, Vec eta, Vec D, Vec D_node) {
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &v));
 }
 
+void Predictor::cache_wall_inputs(Vec p, Vec kappa, Vec eta) {
+  for (Vec* v : {&lwp_, &lwk_, &lwe_})
+    if (!*v) GF_PETSC(DMCreateLocalVector(g_.dm_cell(), v));
+  to_local(g_.dm_cell(), p, lwp_);
+  to_local(g_.dm_cell(), kappa, lwk_);
+  to_local(g_.dm_cell(), eta, lwe_);
+  wall_cached_ = true;
+}
+
 void Predictor::wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b) {
   const Box& b = g_.box();
   const PetscScalar** ph = nullptr;
   Vel** kb;
-  Local lp(g_.dm_cell(), p), lk(g_.dm_cell(), kappa), le(g_.dm_cell(), eta), ls(g_.dm_ten(), S),
-      ld(g_.dm_ten(), D);
+  if (!wall_cached_) {
+    for (Vec* v : {&lwp_, &lwk_, &lwe_})
+      if (!*v) GF_PETSC(DMCreateLocalVector(g_.dm_cell(), v));
+    to_local(g_.dm_cell(), p, lwp_);
+    to_local(g_.dm_cell(), kappa, lwk_);
+    to_local(g_.dm_cell(), eta, lwe_);
+  }
+  Local ls(g_.dm_ten(), S), ld(g_.dm_ten(), D);
   const PetscScalar **pa, **k, **e;
   const PetscScalar ***sa, ***da;
-  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lp.v, &pa));
-  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lk.v, &k));
-  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), le.v, &e));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lwp_, &pa));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lwk_, &k));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lwe_, &e));
   GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), ls.v, &sa));
   GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), ld.v, &da));
   if (have_phase_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &ph));
@@ -292,8 +307,14 @@ void Predictor::wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b)
   auto wall_x = [&](PetscInt i, PetscInt in, PetscInt j) {
     return 0.5 * (1.5 * (mT(i, j - 1, 0) + mT(i, j, 0)) - 0.5 * (mT(in, j - 1, 0) + mT(in, j, 0)));
   };
+  // Only the cells next to a wall hold a wall face: the rows j = 0, ny-1 and the columns
+  // i = 0, nx-1 (the other cells are skipped, coulomb_face is false there).
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if (j != 0 && j != b.ny - 1 && i != 0 && i != b.nx - 1) {
+        i = std::max(i, std::min(b.xe(), b.nx - 1) - 1);  // jump to the last column
+        continue;
+      }
       if (coulomb_face(ph, 2, i, j)) kb[j][i].u = tan_b_[2] * pos(wall_y(i, j, j + 1));
       if (coulomb_face(ph, 3, i, j)) kb[j][i].u = tan_b_[3] * pos(wall_y(i, j, j - 1));
       if (coulomb_face(ph, 0, i, j)) kb[j][i].v = tan_b_[0] * pos(wall_x(i, i + 1, j));
@@ -303,9 +324,9 @@ void Predictor::wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b)
   if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
   GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), ld.v, &da));
   GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), ls.v, &sa));
-  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), le.v, &e));
-  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lk.v, &k));
-  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lp.v, &pa));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lwe_, &e));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lwk_, &k));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lwp_, &pa));
 }
 
 double Predictor::update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,

@@ -355,6 +355,7 @@ StepStats Stepper::step(State& s, double dt) {
       momentum::Predictor* p;
       ~RegionGuard() { p->clear_plastic_region(); }
     } region_guard{predictor_.get()};
+    if (predictor_->has_wall_friction()) predictor_->cache_wall_inputs(s.p, kappa_, s.eta);
     {
       const Box& b = g_.box();
       PetscInt lo[2] = {b.nx, b.ny}, hi[2] = {-1, -1};  // min i, j and max i, j (as -min -i...)
