@@ -32,9 +32,12 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool p
   GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-da_processors_y", &pyo, nullptr));
   if ((pxo != PETSC_DECIDE && (pxo < 1 || size_ % pxo)) || (pyo != PETSC_DECIDE && (pyo < 1 || size_ % pyo)) ||
       (pxo != PETSC_DECIDE && pyo != PETSC_DECIDE && pxo * pyo != size_))
-    throw InputError("grid: -da_processors_x = " + std::to_string(pxo) + ", -da_processors_y = " +
-                     std::to_string(pyo) + " do not divide the " + std::to_string(size_) +
-                     " MPI ranks (their product must be the number of ranks)");
+  {
+    auto show = [](PetscInt v) { return v == PETSC_DECIDE ? std::string("unset") : std::to_string(v); };
+    throw InputError("grid: -da_processors_x = " + show(pxo) + ", -da_processors_y = " +
+                     show(pyo) + " do not fit the " + std::to_string(size_) +
+                     " MPI ranks (each must divide it, their product must equal it)");
+  }
   GF_PETSC(DMDACreate2d(comm, bx, bt, DMDA_STENCIL_BOX, nx, ny, pxo, pyo, 1, kGhost, nullptr,
                         nullptr, &dm_cell_));
   GF_PETSC(DMSetUp(dm_cell_));
