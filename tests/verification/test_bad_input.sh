@@ -104,6 +104,17 @@ expect_error "negative checkpoint wall time" "$base" "--set output.checkpoint_wa
 expect_error "volume warning threshold of 0" "$base" "--set output.volume_warn_pct=0" \
   "output.volume_warn_pct = 0" "must be > 0 (%)"
 
+# A processor grid that does not fit the ranks (a PETSc option, checked when the grid is made).
+n=$((n + 1)); rc=0
+"$bin" run "$base" --out "$tmp/out_$n" -- -da_processors_x 2 > "$tmp/log_$n" 2>&1 || rc=$?
+if [[ $rc -eq 3 ]] && grep -qF -- "-da_processors_x = 2" "$tmp/log_$n" &&
+   grep -qF "do not fit the 1 MPI ranks" "$tmp/log_$n"; then
+  echo "ok    processor grid 2 x ? on 1 rank: exit 3 with the option named"
+else
+  echo "FAIL  processor grid 2 x ? on 1 rank: exit $rc"; sed 's/^/      | /' "$tmp/log_$n"
+  fails=$((fails + 1))
+fi
+
 # Every bundled case is valid.
 for f in "$src"/cases/*.toml "$src"/cases/verify/*.toml; do
   n=$((n + 1))
