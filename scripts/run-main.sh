@@ -2,7 +2,7 @@
 # The main job of the README: installs what is missing, builds, runs the bundled main case and
 # makes its figures. The main case is case A of the paper (cases/ar07_rough.toml: a column of
 # glass beads of aspect ratio 0.7 collapsing on a rough bottom, Drucker-Prager, eta_0 = 0.5,
-# n = 64 i.e. 256 x 64 cells, to t = 1.06 s; about 1.5 minutes on one core). Output folder:
+# n = 64 i.e. 256 x 64 cells, to t = 1.06 s; under a minute on one core). Output folder:
 # out/<case name>/ (override with OUT=dir; another case with CASE=file; extra arguments go to
 # `granflow run`, e.g. --set grid.n=128).
 set -euo pipefail
