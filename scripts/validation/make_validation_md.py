@@ -441,8 +441,12 @@ def main():
         if r.ok:
             src = (f" (an existing run linked from `{os.path.realpath(r.dir)}`, granflow "
                    f"{r.s.get('version', '?')})" if os.path.islink(r.dir) else "")
+            nr = int(r.s.get("ranks", 1) or 1)
+            extra = f" on {nr} ranks" if nr > 1 else ""
+            if int(r.s.get("restarts", 0) or 0) > 0:
+                extra += f", {r.s.get('restarts')} restart(s)"
             rows.append([f"`{r.name}`", r.meta["tier"], r.grid, r.s.get("steps"),
-                         mins(r.v("wall_s")), f"`{r.meta['cmd']}`{src}"])
+                         mins(r.v("wall_s")) + extra, f"`{r.meta['cmd']}`{src}"])
         elif r.exists:
             rows.append([f"`{r.name}`", r.meta["tier"], f"{r.grid}, **{r.status}** at "
                          f"t = {r.v('t_end'):.3f} s", r.s.get("steps"), mins(r.v("wall_s")),
@@ -450,8 +454,8 @@ def main():
         else:
             rows.append([f"`{r.name}`", r.meta["tier"], "**not run**", "", f"(est. {r.meta['est']})",
                          f"`ONLY={r.name} {RUN_CMD}`"])
-    L += [table(["run", "tier", "grid", "steps", "wall time (1 core)", "command"], rows), "",
-          "Wall times are `wall_s` of summary.json, one rank, on a 2-core machine that was shared "
+    L += [table(["run", "tier", "grid", "steps", "wall time", "command"], rows), "",
+          "Wall times are `wall_s` of summary.json, one rank unless said, on a 2-core machine that was shared "
           "with other jobs while these runs were made (they may overstate an unloaded core's "
           "time by up to ~30 %).", ""]
 
@@ -536,11 +540,13 @@ def main():
             xmax=0.6):
         L += [img(f"{FIG_REL}/a_resolution.png", "case A resolutions"), ""]
 
-    fineA = doneA[-1] if doneA else None
+    # The finest run with field snapshots (a long run may be made without VTK output).
+    withvtk = [x for x in doneA if os.path.exists(os.path.join(x[0].dir, "fields.pvd"))]
+    fineA = withvtk[-1] if withvtk else (doneA[-1] if doneA else None)
     if fineA and not a.no_figures:
         figs = collapse_figures(fineA[0], figs_dir, ["front", "speed", "pressure", "scalars"])
         if figs:
-            L += [f"Figures of the finest case A run (`{fineA[0].name}`, by "
+            L += [f"Figures of the finest case A run with field snapshots (`{fineA[0].name}`, by "
                   f"`scripts/plot_collapse.py`): front with the stages and the paper's marks, "
                   "|u| snapshots (Fig. 3), pressure (Fig. 5), back-wall height / max pressure / "
                   "volume / max speed against t.", ""]
