@@ -30,10 +30,12 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool p
   PetscInt pxo = PETSC_DECIDE, pyo = PETSC_DECIDE;
   GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-da_processors_x", &pxo, nullptr));
   GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-da_processors_y", &pyo, nullptr));
-  if ((pxo != PETSC_DECIDE && (pxo < 1 || size_ % pxo)) || (pyo != PETSC_DECIDE && (pyo < 1 || size_ % pyo)) ||
-      (pxo != PETSC_DECIDE && pyo != PETSC_DECIDE && pxo * pyo != size_))
-  {
-    auto show = [](PetscInt v) { return v == PETSC_DECIDE ? std::string("unset") : std::to_string(v); };
+  auto fits = [&](PetscInt v) { return v == PETSC_DECIDE || (v >= 1 && size_ % v == 0); };
+  if (!fits(pxo) || !fits(pyo) ||
+      (pxo != PETSC_DECIDE && pyo != PETSC_DECIDE && pxo * pyo != size_)) {
+    auto show = [](PetscInt v) {
+      return v == PETSC_DECIDE ? std::string("unset") : std::to_string(v);
+    };
     throw InputError("grid: -da_processors_x = " + show(pxo) + ", -da_processors_y = " +
                      show(pyo) + " do not fit the " + std::to_string(size_) +
                      " MPI ranks (each must divide it, their product must equal it)");

@@ -55,8 +55,8 @@ Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol) : g_(g), 
 }
 
 Predictor::~Predictor() {
-  for (Vec* v : {&lwp_, &lwk_, &lwe_, &wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_, &lp_, &lvel_,
-                 &lvel_old_, &lphi_})
+  for (Vec* v : {&lwp_, &lwk_, &lwe_, &wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_,
+                 &lp_, &lvel_, &lvel_old_, &lphi_})
     VecDestroy(v);
   KSPDestroy(&ksp_);
   MatDestroy(&A_);

@@ -71,11 +71,13 @@ class Predictor {
   // kappa > 0 or phi < 0 widened by 2 cells; the faces outside get no plastic term there).
   // Outside it strain_rate leaves D as it was: callers that read D everywhere call
   // clear_plastic_region() first. Without the node copy only.
+  // kUnbounded: no limit in that direction.
+  static constexpr PetscInt kUnbounded = 1000000000;
   void set_plastic_region(PetscInt i0, PetscInt i1, PetscInt j0, PetscInt j1) {
     reg_ = {i0, i1, j0, j1};
   }
   void clear_plastic_region() {
-    reg_ = {-1000000000, 1000000000, -1000000000, 1000000000};
+    reg_ = {-kUnbounded, kUnbounded, -kUnbounded, kUnbounded};
     wall_cached_ = false;
   }
   // Ghosted copies of p, kappa and eta for wall_yield, which the fixed point calls in every
@@ -118,7 +120,7 @@ class Predictor {
   Vec lwp_ = nullptr, lwk_ = nullptr, lwe_ = nullptr;  // cache_wall_inputs
   struct Region {
     PetscInt i0, i1, j0, j1;
-  } reg_{-1000000000, 1000000000, -1000000000, 1000000000};
+  } reg_{-kUnbounded, kUnbounded, -kUnbounded, kUnbounded};
   const Grid& g_;
   Boundaries bc_;
   Mat A_ = nullptr;

@@ -272,12 +272,9 @@ void Predictor::wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b)
   const Box& b = g_.box();
   const PetscScalar** ph = nullptr;
   Vel** kb;
-  if (!wall_cached_) {
-    for (Vec* v : {&lwp_, &lwk_, &lwe_})
-      if (!*v) GF_PETSC(DMCreateLocalVector(g_.dm_cell(), v));
-    to_local(g_.dm_cell(), p, lwp_);
-    to_local(g_.dm_cell(), kappa, lwk_);
-    to_local(g_.dm_cell(), eta, lwe_);
+  if (!wall_cached_) {  // outside the fixed point: ghost them for this call only
+    cache_wall_inputs(p, kappa, eta);
+    wall_cached_ = false;
   }
   Local ls(g_.dm_ten(), S), ld(g_.dm_ten(), D);
   const PetscScalar **pa, **k, **e;

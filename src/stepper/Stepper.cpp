@@ -217,6 +217,34 @@ std::vector<std::vector<PetscInt>> Stepper::anderson_active(bool node) const {
   return idx;
 }
 
+void Stepper::set_plastic_region(const State& s) {
+  const Box& b = g_.box();
+  // -min and max of i and j over the cells with kappa > 0 or phi < 0: one MPI_MAX reduction.
+  PetscInt ext[4] = {-b.nx, -b.ny, -1, -1};
+  const PetscScalar *k, *ph;
+  GF_PETSC(VecGetArrayRead(kappa_, &k));
+  GF_PETSC(VecGetArrayRead(s.phi, &ph));
+  for (PetscInt j = b.ys, c = 0; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i, ++c)
+      if (k[c] > 0 || ph[c] < 0) {
+        ext[0] = std::max(ext[0], -i);
+        ext[1] = std::max(ext[1], -j);
+        ext[2] = std::max(ext[2], i);
+        ext[3] = std::max(ext[3], j);
+      }
+  GF_PETSC(VecRestoreArrayRead(s.phi, &ph));
+  GF_PETSC(VecRestoreArrayRead(kappa_, &k));
+  PetscInt e[4];
+  MPI_Allreduce(ext, e, 4, MPIU_INT, MPI_MAX, g_.comm());
+  using P = momentum::Predictor;
+  if (e[2] < 0)
+    predictor_->set_plastic_region(0, 0, 0, 0);  // no granular cell: no plastic term
+  else if (b.periodic_x)  // the region may wrap around the seam: all columns
+    predictor_->set_plastic_region(-P::kUnbounded, P::kUnbounded, -e[1] - 2, e[3] + 3);
+  else
+    predictor_->set_plastic_region(-e[0] - 2, e[2] + 3, -e[1] - 2, e[3] + 3);
+}
+
 momentum::Predictor::WallContact Stepper::wall_contact(const State& s) const {
   if (!predictor_ || !predictor_->has_wall_friction()) return {};
   return predictor_->wall_contact(s.s_wall, kappa_b_);
@@ -356,32 +384,7 @@ StepStats Stepper::step(State& s, double dt) {
       ~RegionGuard() { p->clear_plastic_region(); }
     } region_guard{predictor_.get()};
     if (predictor_->has_wall_friction()) predictor_->cache_wall_inputs(s.p, kappa_, s.eta);
-    {
-      const Box& b = g_.box();
-      PetscInt lo[2] = {b.nx, b.ny}, hi[2] = {-1, -1};  // min i, j and max i, j (as -min -i...)
-      const PetscScalar *k, *ph;
-      GF_PETSC(VecGetArrayRead(kappa_, &k));
-      GF_PETSC(VecGetArrayRead(s.phi, &ph));
-      for (PetscInt j = b.ys, c = 0; j < b.ye(); ++j)
-        for (PetscInt i = b.xs; i < b.xe(); ++i, ++c)
-          if (k[c] > 0 || ph[c] < 0) {
-            lo[0] = std::min(lo[0], i);
-            lo[1] = std::min(lo[1], j);
-            hi[0] = std::max(hi[0], i);
-            hi[1] = std::max(hi[1], j);
-          }
-      GF_PETSC(VecRestoreArrayRead(s.phi, &ph));
-      GF_PETSC(VecRestoreArrayRead(kappa_, &k));
-      PetscInt glo[2], ghi[2];
-      MPI_Allreduce(lo, glo, 2, MPIU_INT, MPI_MIN, g_.comm());
-      MPI_Allreduce(hi, ghi, 2, MPIU_INT, MPI_MAX, g_.comm());
-      if (ghi[0] >= 0 && !b.periodic_x)
-        predictor_->set_plastic_region(glo[0] - 2, ghi[0] + 3, glo[1] - 2, ghi[1] + 3);
-      else if (ghi[0] >= 0)
-        predictor_->set_plastic_region(-1000000000, 1000000000, glo[1] - 2, ghi[1] + 3);
-      else
-        predictor_->set_plastic_region(0, 0, 0, 0);  // no granular cell: no plastic term
-    }
+    set_plastic_region(s);
     double last_ch = std::numeric_limits<double>::infinity();
     for (int k = 1; k <= cfg_.rheo.fp_max_iter; ++k) {
       GF_PETSC(VecCopy(rhs0_, rhs_));

@@ -117,6 +117,9 @@ class Stepper {
   // indices per block (Anderson::set_active): S where kappa > 0 or S^n != 0, s_t on the wall
   // faces (or where s_t^n != 0), the node copy everywhere.
   std::vector<std::vector<PetscInt>> anderson_active(bool node) const;
+  // Limits the plastic terms and D(u~) of this step's fixed point to the cells with kappa > 0
+  // or phi < 0, widened by 2 cells (Predictor::set_plastic_region); collective.
+  void set_plastic_region(const State& s);
   Vec eta_node_ = nullptr, rhs_ = nullptr, u_tilde_ = nullptr, lphi_ = nullptr;
 };
 
