@@ -31,6 +31,8 @@ const std::vector<std::string> kProbeFields{"phi", "rho",    "u",      "v",     
 const std::vector<std::string> kSides{"left", "right", "bottom", "top"};
 const std::vector<std::string> kYields{"none", "bingham", "dp", "hp"};
 const std::vector<std::string> kPlasticGrids{"cell", "cell_node"};
+const std::vector<std::string> kYieldSupports{"phase", "mass"};
+const std::vector<std::string> kRedistanceWalls{"drop", "extrapolate"};
 const std::vector<std::string> kViscosities{"constant", "mu_i"};
 
 // Counts are stored as int; these bounds keep them (and nx * ny) far from overflow.
@@ -180,6 +182,14 @@ Params case_params() {
              "stress, so that the node shear rates and the cell normal rates are both seen "
              "exactly: the cell-only strain rate has near-null modes (u alternating row by row) "
              "that the yield stress cannot stop (docs/RHEOLOGY.md, cessation).");
+  p.add_enum("rheology.yield_support", "phase", kYieldSupports,
+             "Where the yield stress kappa and the Coulomb wall friction act: phase = where "
+             "phi < 0 (the paper: kappa = 0 in the air, eq. 18; friction where phi < 0, eq. 22); "
+             "mass = where phi < eps, i.e. wherever eq. 25 gives the cell granular mass "
+             "(1 - H_eps > 0). With phase, the smeared band 0 < phi < eps is heavy but has "
+             "neither yield stress nor wall friction: on a slope or at a shallow front it slides "
+             "as a thin gravity current, so a pile whose slopes are below the friction angle "
+             "does not stay at rest (docs/RHEOLOGY.md, pile at rest).");
   p.add_real("rheology.theta_per_dt", "1/s", 10.0, Range::gt(0),
              "Fixed point of eq. 31: pseudo-relaxation theta = theta_per_dt dt (theta = 10 dt "
              "in section 4.1.3), capped at 0.5.");
@@ -212,6 +222,18 @@ Params case_params() {
              "and the Coulomb block then slides 22-35 % too fast with 1.0 (2 % with 1.5).");
   p.add_int("levelset.redistance_every", "steps", 5, closed(0, 1e6),
             "Redistance phi every this many steps; 0 = never.");
+  p.add_real("levelset.redistance_tol", "", 0.0, Range::ge(0),
+             "Redistance (every redistance_every steps) only if phi has drifted from a signed "
+             "distance near the interface: max | |grad phi| - 1 | over |phi| < 3h above this. "
+             "0 = always. Each redistancing moves the zero level slightly, most where it meets a "
+             "wall at a shallow angle; with a tolerance a deposit at rest is left alone.");
+  p.add_enum("levelset.redistance_wall", "drop", kRedistanceWalls,
+             "Redistancing next to a wall: drop = the differences that would need a cell beyond "
+             "the wall are left out (information only leaves through walls); extrapolate = phi "
+             "is continued linearly beyond the wall, so that an interface keeps its angle with "
+             "the wall: where it meets the wall at a shallow angle (a pile's toe, a deposit's "
+             "front) drop gives the wall-row cells their distance along the wall and erodes the "
+             "granular mass there at every redistancing (docs/RHEOLOGY.md, pile at rest).");
   p.add_int("levelset.redistance_iters", "", 10, closed(1, 1000),
             "Pseudo-time iterations per redistancing.");
   p.add_real("levelset.redistance_cfl", "", 0.5, Range::open_closed(0, 1),
@@ -426,6 +448,7 @@ CaseConfig fill(const Params& p) {
   rh.r_factor = p.get_real("rheology.r_factor");
   rh.theta_per_dt = p.get_real("rheology.theta_per_dt");
   rh.node_copy = p.get_string("rheology.plastic_grid") == "cell_node";
+  rh.yield_on_mass = p.get_string("rheology.yield_support") == "mass";
   rh.fp_tol = p.get_real("rheology.fp_tol");
   rh.fp_tol_u = p.get_real("rheology.fp_tol_u");
   rh.fp_max_iter = static_cast<int>(p.get_int("rheology.fp_max_iter"));
@@ -435,6 +458,8 @@ CaseConfig fill(const Params& p) {
   c.levelset.eps_cells = p.get_real("levelset.eps_cells");
   c.levelset.redistance_every = static_cast<int>(p.get_int("levelset.redistance_every"));
   c.levelset.redistance_iters = static_cast<int>(p.get_int("levelset.redistance_iters"));
+  c.levelset.redistance_tol = p.get_real("levelset.redistance_tol");
+  c.levelset.redistance_wall_extrapolate = p.get_string("levelset.redistance_wall") == "extrapolate";
   c.levelset.redistance_cfl = p.get_real("levelset.redistance_cfl");
 
   auto& in = c.initial;
@@ -793,7 +818,7 @@ void check(const Params& p, CaseConfig& c, InputErrors& errors) {
           unused_keys.push_back({k, "rheology.viscosity = constant"});
       if (rh.yield == Yield::None)
         for (const char* k : {"rheology.r_factor", "rheology.theta_per_dt", "rheology.fp_tol",
-                              "rheology.plastic_grid",
+                              "rheology.plastic_grid", "rheology.yield_support",
                               "rheology.fp_max_iter"})
           unused_keys.push_back({k, y + " (no plastic fixed point)"});
       for (const auto& [k, why] : unused_keys)

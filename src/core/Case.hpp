@@ -60,6 +60,8 @@ struct CaseConfig {
     bool enabled = true;       // false: single phase, the whole domain is "granular"
     double eps_cells = 0;      // smearing half-width of H_eps, in cells (eps = eps_cells h)
     int redistance_every = 0;  // steps; 0 = never
+    double redistance_tol = 0;
+    bool redistance_wall_extrapolate = false;  // levelset.redistance_wall = "extrapolate"  // -, redistance only above this distance defect (0: always)
     int redistance_iters = 0;
     double redistance_cfl = 0;  // pseudo-time CFL
     bool operator==(const LevelSet&) const = default;
@@ -106,6 +108,7 @@ struct CaseConfig {
     double r_factor = 0;      // -, r = r_factor (2 eta + rho a0 h^2/dt) / kappa^2
     double theta_per_dt = 0;  // 1/s, theta = min(theta_per_dt dt, 0.5)
     bool node_copy = false;   // rheology.plastic_grid = "cell_node": S also at the nodes
+    bool yield_on_mass = false;  // rheology.yield_support = "mass": kappa where phi < eps
     double fp_tol = 0;        // -, on the max change of S and s_t in one iteration
     double fp_tol_u = 0;      // m/s, on the max change of u~ in one iteration (0: off)
     int fp_max_iter = 0;

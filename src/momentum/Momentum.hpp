@@ -51,9 +51,13 @@ class Predictor {
 
   // ---- The plastic part of eq. 31 (rheology plugs in here; see Plastic.cpp) ----
   // Coulomb friction coefficient tan(alpha_b) per wall, in the order left, right, bottom, top
-  // (0 = none). Where the granular phase (phi < 0 on the face) touches such a wall, the wall
-  // traction is -kappa_b s_t (eqs. 22-23, 30) instead of the Navier/no-slip/free-slip law.
-  void set_wall_friction(const std::array<double, 4>& tan_alpha_b) { tan_b_ = tan_alpha_b; }
+  // (0 = none). Where the granular phase (phi < support on the face, m; 0 = the sign of phi,
+  // rheology.yield_support) touches such a wall, the wall traction is -kappa_b s_t (eqs. 22-23,
+  // 30) instead of the Navier/no-slip/free-slip law.
+  void set_wall_friction(const std::array<double, 4>& tan_alpha_b, double support = 0) {
+    tan_b_ = tan_alpha_b;
+    support_ = support;
+  }
   bool has_wall_friction() const;
   // Tells assemble() and the plastic terms which wall faces are granular (phi: global Vec).
   void set_phase(Vec phi);
@@ -130,6 +134,7 @@ class Predictor {
       lp_ = nullptr;
   Vec conv_ = nullptr, conv_old_ = nullptr;
   std::array<double, 4> tan_b_{0, 0, 0, 0};  // left, right, bottom, top
+  double support_ = 0;                       // m, a wall face is granular where phi < this
   Vec lphi_ = nullptr;                       // local phi of the current step (granular faces)
   bool have_phase_ = false;
   // Is the wall face granular and frictional? side: 0 left, 1 right, 2 bottom, 3 top.

@@ -41,11 +41,11 @@ bool Predictor::coulomb_face(const PetscScalar* const* ph, int side, PetscInt i,
   // With periodic x there are no left/right walls, and the bottom/top u-face i = 0 is an
   // ordinary face (its left cell -1 is the wrapped ghost).
   switch (side) {
-    case 0: return !b.periodic_x && j >= 1 && i == 0 && 0.5 * (ph[j - 1][0] + ph[j][0]) < 0;
+    case 0: return !b.periodic_x && j >= 1 && i == 0 && 0.5 * (ph[j - 1][0] + ph[j][0]) < support_;
     case 1:
-      return !b.periodic_x && j >= 1 && i == b.nx - 1 && 0.5 * (ph[j - 1][i] + ph[j][i]) < 0;
-    case 2: return !b.wall_u(i) && j == 0 && 0.5 * (ph[0][i - 1] + ph[0][i]) < 0;
-    case 3: return !b.wall_u(i) && j == b.ny - 1 && 0.5 * (ph[j][i - 1] + ph[j][i]) < 0;
+      return !b.periodic_x && j >= 1 && i == b.nx - 1 && 0.5 * (ph[j - 1][i] + ph[j][i]) < support_;
+    case 2: return !b.wall_u(i) && j == 0 && 0.5 * (ph[0][i - 1] + ph[0][i]) < support_;
+    case 3: return !b.wall_u(i) && j == b.ny - 1 && 0.5 * (ph[j][i - 1] + ph[j][i]) < support_;
   }
   return false;
 }

@@ -206,7 +206,7 @@ void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Ve
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       double kv = 0;
-      if (ph[j][i] < 0) {
+      if (ph[j][i] < pr.support) {
         switch (pr.yield) {
           case Yield::None: kv = 0; break;
           case Yield::Bingham: kv = pr.tau_y; break;

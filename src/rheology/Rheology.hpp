@@ -32,6 +32,10 @@ struct Params {
   // the cell copy (shear rate = mean of the four node rates), half from the node copy (normal
   // rate = mean of the adjacent cells').
   bool node_copy = false;
+  // m: kappa (and the Coulomb wall friction) act where phi < support. 0: in the granular phase
+  // phi < 0 (the paper); eps: also in the smeared band, wherever eq. 25 gives granular mass
+  // (rheology.yield_support = "mass").
+  double support = 0;
   double theta_per_dt = 10;  // 1/s: theta = theta_per_dt dt (section 4.1.3), capped at 0.5
   double fp_tol = 1e-6;    // stop when max |S_{k+1} - S_k| and |s_{k+1} - s_k| fall below
   // m/s; > 0: also stop when the velocity u~ of eq. 31 changes by less than this in one

@@ -21,6 +21,8 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.redistance_every = c.levelset.redistance_every;
   p.redistance_iters = c.levelset.redistance_iters;
   p.redistance_cfl = c.levelset.redistance_cfl;
+  p.redistance_tol = c.levelset.redistance_tol;
+  p.redistance_wall_extrapolate = c.levelset.redistance_wall_extrapolate;
   auto wall = [&](CaseConfig::Side s) {
     const auto& w = c.walls[s];
     return WallBC{static_cast<WallType>(w.type), w.eta_b, w.velocity};
@@ -55,6 +57,7 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.rheo.r_factor = rh.r_factor;
   p.rheo.theta_per_dt = rh.theta_per_dt;
   p.rheo.node_copy = rh.node_copy;
+  p.rheo.support = rh.yield_on_mass && c.levelset.enabled ? p.eps : 0.0;
   p.rheo.fp_tol = rh.fp_tol;
   p.rheo.fp_tol_u = rh.fp_tol_u;
   p.rheo.fp_max_iter = rh.fp_max_iter;

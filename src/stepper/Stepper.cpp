@@ -22,6 +22,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
     advector_ = std::make_unique<levelset::Advector>(g);
     redistancer_ =
         std::make_unique<levelset::Redistancer>(g, cfg_.redistance_iters, cfg_.redistance_cfl);
+    redistancer_->set_wall_extrapolation(cfg_.redistance_wall_extrapolate);
   }
   if (cfg_.prescribed == PrescribedFlow::None) {
     predictor_ = std::make_unique<momentum::Predictor>(g, cfg_.bc, cfg_.viscous_rtol);
@@ -29,7 +30,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   }
   plastic_ = cfg_.rheo.active() ||
              std::any_of(cfg_.wall_tan_b.begin(), cfg_.wall_tan_b.end(), [](double t) { return t > 0; });
-  if (predictor_) predictor_->set_wall_friction(cfg_.wall_tan_b);
+  if (predictor_) predictor_->set_wall_friction(cfg_.wall_tan_b, cfg_.rheo.support);
   // -fp_monitor: print the change of every fixed-point iteration (convergence studies).
   PetscBool mon = PETSC_FALSE;
   GF_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-fp_monitor", &mon, nullptr));
@@ -330,8 +331,13 @@ StepStats Stepper::step(State& s, double dt) {
     }
     if (cfg_.redistance_every > 0 && (s.step + 1) % cfg_.redistance_every == 0) {
       prof::Scope ps(prof::Redistance);
-      redistancer_->run(s.phi);
-      st.redistanced = true;
+      // levelset.redistance_tol: only when transport has made phi drift from a distance. Each
+      // redistancing moves the zero level a little (most where it meets a wall at a shallow
+      // angle); a deposit at rest, whose phi does not change, should not be eroded by it.
+      if (cfg_.redistance_tol <= 0 || redistancer_->distance_defect(s.phi) > cfg_.redistance_tol) {
+        redistancer_->run(s.phi);
+        st.redistanced = true;
+      }
     }
   }
   if (cfg_.prescribed != PrescribedFlow::None) {

@@ -135,3 +135,34 @@ TEST(Anderson, ConvergesAgainAfterSetActive) {
   EXPECT_LE(k, 12) << "error " << r.err;
   EXPECT_TRUE(r.zero);
 }
+
+// The history belongs to one fixed-point map. At a new time step the map changes (other S^n,
+// kappa, u^n) and the first update must be the plain step x = G(x): a difference f_k - f_{k-1}
+// across two maps, or a stored pair of the old map, would send the mixing off. The stepper
+// starts each step with set_active, a growing residual calls reset: both must drop everything.
+TEST(Anderson, FirstUpdateAfterSetActiveOrResetIsThePlainStep) {
+  for (const bool by_reset : {false, true}) {
+    Mixing r(5);
+    r.iterate(0.0, 8);  // a full history (8 > depth 5)
+    // A new map: scale x away from the fixed point, as a new time step starts elsewhere.
+    for (auto& v : r.p.x) VecScale(v, 0.3);
+    if (by_reset)
+      r.a.reset();
+    else
+      r.a.set_active(r.p.active);
+    r.p.apply();
+    r.a.update(r.p.x, r.p.g);
+    double diff = 0;
+    for (size_t b = 0; b < r.p.x.size(); ++b) {
+      Vec d;
+      VecDuplicate(r.p.x[b], &d);
+      VecWAXPY(d, -1.0, r.p.g[b], r.p.x[b]);
+      PetscReal nb;
+      VecNorm(d, NORM_INFINITY, &nb);
+      diff = std::max(diff, static_cast<double>(nb));
+      VecDestroy(&d);
+    }
+    EXPECT_EQ(diff, 0.0) << (by_reset ? "reset" : "set_active")
+                         << " left history behind: x != G(x) after the first update";
+  }
+}
