@@ -1010,9 +1010,10 @@ def main():
           "after the motion has stopped, and the front recedes with it, so the final front "
           "(runout) lies behind the furthest front (both are reported) and depends on how long "
           "a run continues at rest: " + "; ".join(after) + ".",
-          "- **Pressure.** The max granular pressure of case A exceeds ρ_s g H_c briefly: "
-          + "; ".join(f"n = {n}: by {100 * (v - 1):.1f} % at t = {tm:.2f} s"
-                      + (f", above the bound for {ab[0]:.2f} ≤ t ≤ {ab[1]:.2f} s" if ab else "")
+          "- **Pressure.** The max granular pressure of case A against ρ_s g H_c: "
+          + "; ".join((f"n = {n}: above it by {100 * (v - 1):.1f} % at t = {tm:.2f} s"
+                       + (f", above the bound for {ab[0]:.2f} ≤ t ≤ {ab[1]:.2f} s" if ab else ""))
+                      if v > 1 else f"n = {n}: below it (peak {v:.3f} at t = {tm:.2f} s)"
                       for n, (v, tm, ab) in pr.items()) +
           ", at the end of the acceleration phase, when the collapsing column's upper part "
           "is decelerated; the paper reports p ≤ ρ_s g H_c at all times. " + p_trend +
@@ -1024,9 +1025,12 @@ def main():
           " against the paper's 1.145 m (768 × 256) and the experiment's 1.213 m. "
           + ("The runout grows with n and exceeds the paper's value from n = "
              f"{next((n for r, n in doneB if r.v('runout_m') > B_RUNOUT_PAPER[15.0]), '?')} on: "
-             "it is not converged at the grids run here, and the finer runs overshoot the "
-             "paper's. Whether n = 256 (the paper's grid, full tier) comes back to 1.145 m is "
-             "not known; the cause of the difference is not identified."
+             f"between the two finest grids it changes by "
+             f"{pct(rel(doneB[-1][0].v('runout_m'), doneB[-2][0].v('runout_m')))}, and the finer "
+             "runs overshoot the paper's" + (", also at the paper's own grid (n = 256)"
+                          if any(n == 256 for _, n in doneB) else
+                          "; whether n = 256 (the paper's grid, full tier) comes back to 1.145 m "
+                          "is not known") + "; the cause of the difference is not identified."
              if len(doneB) >= 2 and all(b[0].v("runout_m") > a[0].v("runout_m")
                                         for a, b in zip(doneB, doneB[1:]))
              and doneB[-1][0].v("runout_m") > B_RUNOUT_PAPER[15.0] else ""),
@@ -1036,13 +1040,13 @@ def main():
           " against the paper's 29° (x ≤ 0.35 m) and 7° (x ≥ 0.5 m): the deposit is flatter than "
           "the paper's both near the back wall and in the far field, with a runout close to the "
           "paper's. The cause is not identified; the trend with n is listed in the table. The "
-          "angle at the front is fitted over the last 2 cm, i.e. 1.4–3 cells at these grids: "
-          "not resolved (NaN where there are too few cells).",
-          "- **Resolution.** The finest runs here are coarser than the paper's (case A "
-          f"{fineA[0].grid if fineA else '–'} against 1024 × 256, case B "
-          f"{fineB[0].grid if fineB else '–'} against 768 × 256, HP case A "
-          f"{hp_fine.grid if hp_fine else '–'} and HP case B {hpb.grid if hpb else '–'} against "
-          "n = 128): the paper itself shows the n = 64 runout short of the finer ones. The "
+          "angle at the front is fitted over the last 2 cm, i.e. 1.4–3 cells at n ≤ 64 (not "
+          "resolved; NaN where there are too few cells) and 5.6 / 11 cells at n = 128 / 256.",
+          "- **Resolution.** The finest runs here against the paper's grids: case A "
+          f"{doneA[-1][0].grid if doneA else '–'} (paper 1024 × 256), case B "
+          f"{fineB[0].grid if fineB else '–'} (paper 768 × 256), HP case A "
+          f"{hp_fine.grid if hp_fine else '–'} and HP case B {hpb.grid if hpb else '–'} (paper "
+          "n = 128); the paper itself shows the n = 64 runout short of the finer ones. The "
           "`full` tier runs the paper's grids; those not run are listed as such above.",
           "- **Stage times.** granflow's stages follow rules on the front (diagnostics/"
           "Collapse.hpp); the paper reads its t1, t2, t3 off its figures, so the stage "

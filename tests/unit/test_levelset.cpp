@@ -477,3 +477,58 @@ TEST(LevelSetShapes, TrapezoidDistanceToItsFreeSides) {
   // Beyond the corner of the top: the distance to the vertex (0.4, 0.1).
   EXPECT_NEAR(trapezoid_distance(0.45, 0.15, x0, x1, h, s), std::hypot(0.05, 0.05), 1e-12);
 }
+
+// A contact line at a shallow angle: the interface y = tan(15 deg) (x - x0) meets the bottom
+// wall at x0 (the toe of a pile, the front of a deposit), and phi is its exact signed distance.
+// Redistancing must leave an exact distance alone. With levelset.redistance_wall = "extrapolate"
+// (phi continued linearly through the wall) the wall-row cells keep their distance; with "drop"
+// (the default) they get their distance along the wall instead, up to 1/sin(15 deg) = 3.9 times
+// too large, which erodes the toe (printed, docs/RHEOLOGY.md).
+TEST(LevelSetRedistance, ShallowContactLineKeepsItsDistance) {
+  const int n = 32;
+  Grid g(PETSC_COMM_SELF, 2 * n, n, 0.4, 0.2);
+  const double h = g.hx();
+  const double s = std::tan(15 * kPi / 180), c = std::sqrt(1 + s * s), x0 = 0.1;
+  auto d = [&](double x, double y) { return (s * (x - x0) - y) / c; };  // > 0 right of the slope
+  const Box& b = g.box();
+  double err[2];
+  for (const bool extrap : {false, true}) {
+    Field p(g.dm_cell(), "phi");
+    fill_cells(g, p, d);
+    ls::Redistancer rd(g, 10, 0.5);
+    rd.set_wall_extrapolation(extrap);
+    rd.run(p);
+    EXPECT_TRUE(all_finite(p));
+    const PetscScalar* const* a;
+    DMDAVecGetArrayRead(g.dm_cell(), p, &a);
+    double e = 0;  // the cells near the interface, the wall row included
+    for (PetscInt j = 0; j < b.ny; ++j)
+      for (PetscInt i = 0; i < b.nx; ++i)
+        if (std::abs(d(b.xc(i), b.yc(j))) < 1.5 * h) e = std::max(e, std::abs(a[j][i] - d(b.xc(i), b.yc(j))));
+    DMDAVecRestoreArrayRead(g.dm_cell(), p, &a);
+    err[extrap] = e;
+  }
+  std::printf("redistance, 15 deg contact line: max |phi - d| near the interface %.3f h (drop), "
+              "%.3f h (extrapolate)\n", err[0] / h, err[1] / h);
+  EXPECT_LT(err[1], 0.05 * h);
+}
+
+// The distance defect that levelset.redistance_tol compares: 0 for a signed distance (a plane),
+// 1 for twice a distance, and only the band |phi| < 3h counts.
+TEST(LevelSetRedistance, DistanceDefect) {
+  Grid g(PETSC_COMM_SELF, 32, 32, 1.0, 1.0);
+  const double h = g.hx();
+  const double s = 0.3, c = std::sqrt(1 + s * s);
+  Field p(g.dm_cell(), "phi");
+  ls::Redistancer rd(g, 1, 0.5);
+  fill_cells(g, p, [&](double x, double y) { return (y - 0.4 - s * x) / c; });
+  EXPECT_LT(rd.distance_defect(p), 1e-12);
+  fill_cells(g, p, [&](double x, double y) { return 2 * (y - 0.4 - s * x) / c; });
+  EXPECT_NEAR(rd.distance_defect(p), 1.0, 1e-12);
+  // Far from the interface phi may be anything: a layer at y = 0.5, squared beyond 4h.
+  fill_cells(g, p, [&](double, double y) {
+    const double v = y - 0.5;
+    return std::abs(v) < 4 * h ? v : v * std::abs(v) / (4 * h);
+  });
+  EXPECT_LT(rd.distance_defect(p), 1e-12);
+}

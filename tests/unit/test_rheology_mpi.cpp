@@ -91,3 +91,41 @@ TEST(Rheology, HydrostaticPressureAcrossRanks) {
   DMDAVecRestoreArrayRead(g.dm_cell(), ph, &pa);
   EXPECT_LT(g.max(err), 1e-9 * rho * gabs * H);
 }
+
+TEST(Rheology, YieldSupportPhaseOrMass) {
+  // Drucker-Prager kappa = tan(alpha) p^+ on a layer phi = y - H: with support 0 (the paper,
+  // rheology.yield_support = "phase") only where phi < 0; with support eps ("mass") also in the
+  // smeared band 0 <= phi < eps, where eq. 25 still gives granular mass; 0 above either way.
+  Grid g(PETSC_COMM_WORLD, 8, 32, 0.1, 0.4);
+  Field phi(g.dm_cell(), "phi"), p(g.dm_cell(), "p"), k(g.dm_cell(), "kappa");
+  const Box& b = g.box();
+  const double H = 0.2, eps = 1.5 * b.hy;
+  PetscScalar **fa, **pa;
+  DMDAVecGetArray(g.dm_cell(), phi, &fa);
+  DMDAVecGetArray(g.dm_cell(), p, &pa);
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      fa[j][i] = b.yc(j) - H;
+      pa[j][i] = 1000.0 * (b.Ly - b.yc(j));  // positive everywhere: only phi decides
+    }
+  DMDAVecRestoreArray(g.dm_cell(), p, &pa);
+  DMDAVecRestoreArray(g.dm_cell(), phi, &fa);
+  rheology::Params pr;
+  pr.yield = rheology::Yield::DruckerPrager;
+  pr.tan_alpha = 0.5;
+  for (const double support : {0.0, eps}) {
+    pr.support = support;
+    rheology::yield_stress(g, pr, phi, p, nullptr, k);
+    const PetscScalar** ka;
+    DMDAVecGetArrayRead(g.dm_cell(), k, &ka);
+    double err = 0;
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        const double ph = b.yc(j) - H;
+        const double exact = ph < support ? 0.5 * 1000.0 * (b.Ly - b.yc(j)) : 0.0;
+        err = std::max(err, std::abs(ka[j][i] - exact));
+      }
+    DMDAVecRestoreArrayRead(g.dm_cell(), k, &ka);
+    EXPECT_EQ(g.max(err), 0.0) << "support " << support;
+  }
+}
