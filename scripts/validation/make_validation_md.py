@@ -1017,8 +1017,19 @@ def main():
                       for n, (v, tm, ab) in pr.items()) +
           ", at the end of the acceleration phase, when the collapsing column's upper part "
           "is decelerated; the paper reports p ≤ ρ_s g H_c at all times. " + p_trend +
-          " Its cause is not identified here. The pressure falls back below the bound "
-          "afterwards (scalars figure). The HP run's excess is larger (see its table).",
+          " Where it is (n = 64, VTK every 0.01 s over t ≤ 0.16 s, `--set time.t_end=0.16 "
+          "--set output.vtk_interval=0.01`): in the bottom row at x ≈ 0.19 m, under the "
+          "former edge of the column, inside the static basal zone (u = v = 0 in the 7 rows "
+          "above the bottom), 17 cells from the interface. There the overburden of the "
+          "granular column above is only 0.67 ρ_s g H_c, and p rises smoothly from it 7 rows "
+          "up to 1.06 ρ_s g H_c at the bottom: the flowing layer above shears and pushes the "
+          "static wedge, and the wedge carries that load as a locked-in stress. Inside a rigid "
+          "zone the rigid-plastic model leaves the stress undetermined; the scheme fixes it "
+          "through the relaxation θ(Sⁿ − S) of eq. 31, which makes the rigid zone respond like "
+          "a stiff elastic solid whose stiffness depends on h and dt. That would explain why "
+          "the peak depends on n and on how far the fixed point converges. A hypothesis, not "
+          "a proof. The pressure falls back below the bound afterwards (scalars figure). The "
+          "HP run's excess is larger (see its table).",
           "- **Runout of case B.** " + ("; ".join(
               f"n = {n}: {r.v('runout_m'):.3f} m (furthest {r.v('max_front_x_m'):.3f} m)"
               for r, n in doneB) if doneB else "not run") +
