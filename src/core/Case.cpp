@@ -459,7 +459,8 @@ CaseConfig fill(const Params& p) {
   c.levelset.redistance_every = static_cast<int>(p.get_int("levelset.redistance_every"));
   c.levelset.redistance_iters = static_cast<int>(p.get_int("levelset.redistance_iters"));
   c.levelset.redistance_tol = p.get_real("levelset.redistance_tol");
-  c.levelset.redistance_wall_extrapolate = p.get_string("levelset.redistance_wall") == "extrapolate";
+  c.levelset.redistance_wall_extrapolate =
+      p.get_string("levelset.redistance_wall") == "extrapolate";
   c.levelset.redistance_cfl = p.get_real("levelset.redistance_cfl");
 
   auto& in = c.initial;

@@ -60,8 +60,8 @@ struct CaseConfig {
     bool enabled = true;       // false: single phase, the whole domain is "granular"
     double eps_cells = 0;      // smearing half-width of H_eps, in cells (eps = eps_cells h)
     int redistance_every = 0;  // steps; 0 = never
-    double redistance_tol = 0;
-    bool redistance_wall_extrapolate = false;  // levelset.redistance_wall = "extrapolate"  // -, redistance only above this distance defect (0: always)
+    double redistance_tol = 0;  // -, redistance only above this distance defect (0: always)
+    bool redistance_wall_extrapolate = false;  // levelset.redistance_wall = "extrapolate"
     int redistance_iters = 0;
     double redistance_cfl = 0;  // pseudo-time CFL
     bool operator==(const LevelSet&) const = default;

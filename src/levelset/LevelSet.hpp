@@ -107,6 +107,8 @@ class Redistancer {
   // Per owned cell, fixed during one run() (from phi0): sign, local pseudo-time step and the
   // distances to the interface towards the four neighbours (< 0: no sign change that way).
   std::vector<double> sgn_, dtau_, dxm_, dxp_, dym_, dyp_;
+  // phi into loc_ with its ghosts; the array is read-only until restored from loc_.
+  const PetscScalar* const* ghosted(Vec phi);
   void prepare(Vec phi0);
   void eval_rhs(Vec phi);  // rhs_ = -sgn(phi0) (|grad phi| - 1) * dtau (an increment)
 };

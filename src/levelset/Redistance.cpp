@@ -27,7 +27,8 @@
 // toe), which lowers its granular mass at every redistancing. With set_wall_extrapolation(true)
 // phi is continued linearly beyond the wall (two virtual cells, line_at): the interface continues
 // through the wall at its contact angle, the subcell fix (R4) finds it there, and the ENO
-// correction vanishes on the virtual cells (their second differences are zero). A periodic x direction has no walls: the stencils read the wrapped ghosts.
+// correction vanishes on the virtual cells (their second differences are zero). A periodic x
+// direction has no walls: the stencils read the wrapped ghosts.
 #include <algorithm>
 #include <cmath>
 
@@ -153,12 +154,17 @@ Redistancer::~Redistancer() {
   VecDestroy(&loc_);
 }
 
-void Redistancer::prepare(Vec phi0) {
-  const Box& b = g_.box();
-  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), phi0, INSERT_VALUES, loc_));
-  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), phi0, INSERT_VALUES, loc_));
+const PetscScalar* const* Redistancer::ghosted(Vec phi) {
+  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), phi, INSERT_VALUES, loc_));
+  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), phi, INSERT_VALUES, loc_));
   const PetscScalar* const* p;
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), loc_, &p));
+  return p;
+}
+
+void Redistancer::prepare(Vec phi0) {
+  const Box& b = g_.box();
+  const PetscScalar* const* p = ghosted(phi0);
   const double h = std::min(b.hx, b.hy);
   const Line lx = x_line(b, wall_extrap_), ly = y_line(b, wall_extrap_);
   for (PetscInt j = b.ys; j < b.ye(); ++j)
@@ -168,10 +174,14 @@ void Redistancer::prepare(Vec phi0) {
       sgn_[k] = pc > 0 ? 1.0 : (pc < 0 ? -1.0 : 0.0);
       auto atx = [&](PetscInt m) { return line_at([&](PetscInt q) { return p[j][q]; }, m, lx); };
       auto aty = [&](PetscInt m) { return line_at([&](PetscInt q) { return p[q][i]; }, m, ly); };
-      dxm_[k] = lx.has(i - 1) && pc * atx(i - 1) < 0 ? interface_distance(atx, i, -1, lx, b.hx) : -1;
-      dxp_[k] = lx.has(i + 1) && pc * atx(i + 1) < 0 ? interface_distance(atx, i, 1, lx, b.hx) : -1;
-      dym_[k] = ly.has(j - 1) && pc * aty(j - 1) < 0 ? interface_distance(aty, j, -1, ly, b.hy) : -1;
-      dyp_[k] = ly.has(j + 1) && pc * aty(j + 1) < 0 ? interface_distance(aty, j, 1, ly, b.hy) : -1;
+      // Distance to the interface towards neighbour c + dir of a line, if phi0 changes sign.
+      auto dist = [&](const auto& at, const Line& L, PetscInt c, int dir, double hh) {
+        return L.has(c + dir) && pc * at(c + dir) < 0 ? interface_distance(at, c, dir, L, hh) : -1;
+      };
+      dxm_[k] = dist(atx, lx, i, -1, b.hx);
+      dxp_[k] = dist(atx, lx, i, 1, b.hx);
+      dym_[k] = dist(aty, ly, j, -1, b.hy);
+      dyp_[k] = dist(aty, ly, j, 1, b.hy);
       double hl = h;
       for (double d : {dxm_[k], dxp_[k], dym_[k], dyp_[k]})
         if (d > 0) hl = std::min(hl, d);
@@ -182,11 +192,8 @@ void Redistancer::prepare(Vec phi0) {
 
 void Redistancer::eval_rhs(Vec phi) {
   const Box& b = g_.box();
-  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), phi, INSERT_VALUES, loc_));
-  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), phi, INSERT_VALUES, loc_));
-  const PetscScalar* const* p;
+  const PetscScalar* const* p = ghosted(phi);
   PetscScalar** r;
-  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), loc_, &p));
   GF_PETSC(DMDAVecGetArray(g_.dm_cell(), rhs_, &r));
   const Line lx = x_line(b, wall_extrap_), ly = y_line(b, wall_extrap_);
   for (PetscInt j = b.ys; j < b.ye(); ++j)
@@ -209,10 +216,7 @@ void Redistancer::eval_rhs(Vec phi) {
 
 double Redistancer::distance_defect(Vec phi) {
   const Box& b = g_.box();
-  GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), phi, INSERT_VALUES, loc_));
-  GF_PETSC(DMGlobalToLocalEnd(g_.dm_cell(), phi, INSERT_VALUES, loc_));
-  const PetscScalar* const* p;
-  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), loc_, &p));
+  const PetscScalar* const* p = ghosted(phi);
   const double band = 3 * std::max(b.hx, b.hy);
   const Line lx = x_line(b, false), ly = y_line(b, false);
   double worst = 0;

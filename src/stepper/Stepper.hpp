@@ -37,8 +37,8 @@ struct PhysicsConfig {
   bool levelset = true;       // false: one phase (the "granular" values everywhere)
   double eps = 0;             // m, half-width of the smeared Heaviside (eq. 25)
   int redistance_every = 5;   // steps, 0 = never
-  double redistance_tol = 0;
-  bool redistance_wall_extrapolate = false;  // levelset.redistance_wall = "extrapolate"  // > 0: only when max | |grad phi| - 1 | near phi = 0 exceeds it
+  double redistance_tol = 0;  // > 0: only when max | |grad phi| - 1 | near phi = 0 exceeds it
+  bool redistance_wall_extrapolate = false;  // levelset.redistance_wall = "extrapolate"
   int redistance_iters = 10;
   double redistance_cfl = 0.5;
   Boundaries bc;

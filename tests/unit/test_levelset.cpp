@@ -503,8 +503,10 @@ TEST(LevelSetRedistance, ShallowContactLineKeepsItsDistance) {
     DMDAVecGetArrayRead(g.dm_cell(), p, &a);
     double e = 0;  // the cells near the interface, the wall row included
     for (PetscInt j = 0; j < b.ny; ++j)
-      for (PetscInt i = 0; i < b.nx; ++i)
-        if (std::abs(d(b.xc(i), b.yc(j))) < 1.5 * h) e = std::max(e, std::abs(a[j][i] - d(b.xc(i), b.yc(j))));
+      for (PetscInt i = 0; i < b.nx; ++i) {
+        const double de = d(b.xc(i), b.yc(j));
+        if (std::abs(de) < 1.5 * h) e = std::max(e, std::abs(a[j][i] - de));
+      }
     DMDAVecRestoreArrayRead(g.dm_cell(), p, &a);
     err[extrap] = e;
   }
