@@ -356,6 +356,11 @@ Params case_params() {
              "Relative residual tolerance of the pressure solve (eq. 32).");
   p.add_real("solver.viscous_rtol", "", 1e-10, Range::open(0, 1),
              "Relative residual tolerance of the viscous solve (eq. 31).");
+  p.add_int("solver.viscous_local_margin", "cells", 6, closed(0, 1000),
+             "After the first viscous solve of a step, solve the fixed point's viscous problems "
+             "only on the granular cells widened by this many cells, the others frozen, and end "
+             "with one full solve (Predictor::begin_local); 0 = full solves throughout. "
+             "summary.json: visc_polish_its_total, what the closing solves had to add.");
   p.add_string("solver.petsc_options", "",
                "Extra PETSc options, e.g. \"-pres_pc_type gamg\"; applied before the command "
                "line's, which therefore win.");
@@ -514,6 +519,7 @@ CaseConfig fill(const Params& p) {
 
   c.solver.pressure_rtol = p.get_real("solver.pressure_rtol");
   c.solver.viscous_rtol = p.get_real("solver.viscous_rtol");
+  c.solver.viscous_local_margin = static_cast<int>(p.get_int("solver.viscous_local_margin"));
   c.solver.petsc_options = p.get_string("solver.petsc_options");
 
   for (const Params& item : p.items("probe")) {

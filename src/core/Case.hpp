@@ -142,6 +142,7 @@ struct CaseConfig {
   };
   struct Solver {
     double pressure_rtol = 0, viscous_rtol = 0;
+    int viscous_local_margin = 0;  // cells, 0 = off
     std::string petsc_options;  // applied before the command-line options
     bool operator==(const Solver&) const = default;
   };

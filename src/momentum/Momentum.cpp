@@ -1,5 +1,6 @@
 #include "momentum/Momentum.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -42,6 +43,14 @@ Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol) : g_(g), 
   GF_PETSC(KSPSetTolerances(ksp_, rtol, 1e-50, PETSC_DEFAULT, 1000));
   GF_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
   GF_PETSC(KSPSetFromOptions(ksp_));
+  // The local solves (begin_local) read the same -visc_ options.
+  GF_PETSC(KSPCreate(g.comm(), &kloc_));
+  GF_PETSC(KSPSetOptionsPrefix(kloc_, "visc_"));
+  GF_PETSC(KSPSetType(kloc_, KSPCG));
+  GF_PETSC(KSPGetPC(kloc_, &pc));
+  GF_PETSC(PCSetType(pc, PCJACOBI));
+  GF_PETSC(KSPSetInitialGuessNonzero(kloc_, PETSC_TRUE));
+  GF_PETSC(KSPSetFromOptions(kloc_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &wall_rhs_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &conv_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &conv_old_));
@@ -58,6 +67,9 @@ Predictor::~Predictor() {
   for (Vec* v : {&lwp_, &lwk_, &lwe_, &wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_,
                  &lp_, &lvel_, &lvel_old_, &lphi_})
     VecDestroy(v);
+  end_local();
+  VecDestroy(&work_);
+  KSPDestroy(&kloc_);
   KSPDestroy(&ksp_);
   MatDestroy(&A_);
 }
@@ -251,6 +263,90 @@ int Predictor::solve(Vec rhs, Vec u_tilde) {
                    std::string(KSPConvergedReasons[reason]) + " after " + std::to_string(its) +
                    " iterations; try a smaller time step or -visc_pc_type hypre");
   return static_cast<int>(its);
+}
+
+void Predictor::gather_local(Vec full, Vec sub) const {
+  GF_PETSC(VecScatterBegin(loc_sct_, full, sub, INSERT_VALUES, SCATTER_FORWARD));
+  GF_PETSC(VecScatterEnd(loc_sct_, full, sub, INSERT_VALUES, SCATTER_FORWARD));
+}
+
+void Predictor::begin_local(const std::vector<PetscInt>& rows, Vec rhs, Vec u) {
+  end_local();
+  const PetscInt n_loc = static_cast<PetscInt>(rows.size());
+  PetscInt n_glob = 0;
+  MPI_Allreduce(&n_loc, &n_glob, 1, MPIU_INT, MPI_SUM, g_.comm());
+  if (n_glob == 0) return;
+  // R is where the granular phase is, which in case A lies on one rank of two: the sub-problem
+  // is dealt out in equal parts of its global row list (ascending) instead, rank r taking the
+  // r-th. Every rank holds the whole list (all-gather, O(|R|) integers).
+  PetscInt rstart;
+  GF_PETSC(MatGetOwnershipRange(A_, &rstart, nullptr));
+  std::vector<PetscInt> mine(rows.size());
+  for (std::size_t q = 0; q < rows.size(); ++q) mine[q] = rstart + rows[q];
+  PetscMPIInt size, rank;
+  MPI_Comm_size(g_.comm(), &size);
+  MPI_Comm_rank(g_.comm(), &rank);
+  std::vector<PetscMPIInt> counts(size), displs(size, 0);
+  const PetscMPIInt n_mine = static_cast<PetscMPIInt>(n_loc);
+  MPI_Allgather(&n_mine, 1, MPI_INT, counts.data(), 1, MPI_INT, g_.comm());
+  for (PetscMPIInt r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<PetscInt> all(static_cast<std::size_t>(n_glob));
+  MPI_Allgatherv(mine.data(), n_mine, MPIU_INT, all.data(), counts.data(), displs.data(),
+                 MPIU_INT, g_.comm());
+  const PetscInt lo = n_glob * rank / size, hi = n_glob * (rank + 1) / size;
+  IS is;
+  GF_PETSC(ISCreateGeneral(g_.comm(), hi - lo, all.data() + lo, PETSC_COPY_VALUES, &is));
+  GF_PETSC(MatCreateSubMatrix(A_, is, is, MAT_INITIAL_MATRIX, &Aloc_));
+  GF_PETSC(MatSetOption(Aloc_, MAT_SYMMETRIC, PETSC_TRUE));
+  GF_PETSC(MatCreateVecs(Aloc_, &xloc_, &bloc_));
+  GF_PETSC(VecDuplicate(bloc_, &cloc_));
+  GF_PETSC(VecScatterCreate(u, is, xloc_, nullptr, &loc_sct_));
+  GF_PETSC(ISDestroy(&is));
+  if (!work_) GF_PETSC(VecDuplicate(u, &work_));
+  // c_R = (A u)_R - A_RR u_R: what the frozen rows outside R put into the rows of R.
+  GF_PETSC(MatMult(A_, u, work_));
+  gather_local(work_, cloc_);
+  gather_local(u, xloc_);
+  GF_PETSC(MatMult(Aloc_, xloc_, bloc_));
+  GF_PETSC(VecAXPY(cloc_, -1.0, bloc_));
+  // The full solve's stopping test: ||B r|| < max(rtol ||B rhs||, atol) (KSPConvergedDefault
+  // with a nonzero initial guess). The preconditioned residual of R is the full one while the
+  // residual lives in R (exactly so for Jacobi).
+  PetscReal rtol, atol, dtol, bnorm;
+  PetscInt maxit;
+  GF_PETSC(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &maxit));
+  PC pc;
+  GF_PETSC(KSPGetPC(ksp_, &pc));
+  GF_PETSC(PCApply(pc, rhs, work_));
+  GF_PETSC(VecNorm(work_, NORM_2, &bnorm));
+  GF_PETSC(KSPSetOperators(kloc_, Aloc_, Aloc_));
+  GF_PETSC(KSPSetTolerances(kloc_, 0.0, std::max(rtol * bnorm, atol), dtol, maxit));
+}
+
+int Predictor::solve_local(Vec rhs, Vec u) {
+  gather_local(rhs, bloc_);
+  GF_PETSC(VecAXPY(bloc_, -1.0, cloc_));
+  gather_local(u, xloc_);
+  GF_PETSC(KSPSolve(kloc_, bloc_, xloc_));
+  KSPConvergedReason reason;
+  PetscInt its;
+  GF_PETSC(KSPGetConvergedReason(kloc_, &reason));
+  GF_PETSC(KSPGetIterationNumber(kloc_, &its));
+  if (reason < 0)
+    throw RunError("local viscous solve (prefix -visc_, solver.viscous_local_margin) did not "
+                   "converge: " + std::string(KSPConvergedReasons[reason]) + " after " +
+                   std::to_string(its) + " iterations; try solver.viscous_local_margin = 0");
+  GF_PETSC(VecScatterBegin(loc_sct_, xloc_, u, INSERT_VALUES, SCATTER_REVERSE));
+  GF_PETSC(VecScatterEnd(loc_sct_, xloc_, u, INSERT_VALUES, SCATTER_REVERSE));
+  return static_cast<int>(its);
+}
+
+void Predictor::end_local() {
+  // The next R has other sizes: the KSP and its preconditioner drop the old operator.
+  if (kloc_) KSPReset(kloc_);
+  for (Vec* v : {&bloc_, &xloc_, &cloc_}) VecDestroy(v);
+  MatDestroy(&Aloc_);
+  VecScatterDestroy(&loc_sct_);
 }
 
 }  // namespace gf::momentum

@@ -16,6 +16,7 @@
 #include <petscksp.h>
 
 #include <array>
+#include <vector>
 
 #include "boundary/Boundary.hpp"
 #include "grid/Grid.hpp"
@@ -48,6 +49,27 @@ class Predictor {
 
   // Solves A u~ = rhs. Returns the KSP iteration count; throws RunError on divergence.
   int solve(Vec rhs, Vec u_tilde);
+
+  // ---- Local solves inside the fixed point (solver.viscous_local_margin) ----
+  // After the first solve of a step, the fixed point of eq. 31 changes the right-hand side only
+  // where the plastic terms live, and the operator is dominated by its mass term (the diffusion
+  // length sqrt(eta dt / rho) is below one cell in case A), so u~ changes only near the
+  // granular phase. begin_local() restricts the solves to the rows R (local indices into a
+  // dm_vel global Vec, ascending) with the values of u outside R frozen: the Dirichlet
+  // sub-problem A_RR u_R = rhs_R - A_RS u_S, assembled by MatCreateSubMatrix from the full
+  // matrix, so the same discretisation; its tolerance is the full solve's absolute one,
+  // rtol ||B rhs|| (B: the full solve's preconditioner), the test KSPConvergedDefault applies to
+  // a warm-started full solve. The sub-problem's rows are dealt out evenly over the ranks. CG moves a residual by one cell per iteration, so while R holds
+  // the granular rows widened by more cells than the iterations a solve takes, the local solve
+  // takes the same steps as the full one. The caller ends the fixed point with a full solve
+  // (solve()), which puts back what the frozen rows missed. Collective; an empty R on every
+  // rank leaves the local solves off (local_active() false).
+  void begin_local(const std::vector<PetscInt>& rows, Vec rhs, Vec u);
+  bool local_active() const { return Aloc_ != nullptr; }
+  // Solves the sub-problem for the rows R of u (the others are left as they are) with the
+  // current rhs (global dm_vel Vec, all rows). Returns the KSP iteration count.
+  int solve_local(Vec rhs, Vec u);
+  void end_local();
 
   // ---- The plastic part of eq. 31 (rheology plugs in here; see Plastic.cpp) ----
   // Coulomb friction coefficient tan(alpha_b) per wall, in the order left, right, bottom, top
@@ -129,6 +151,12 @@ class Predictor {
   Boundaries bc_;
   Mat A_ = nullptr;
   KSP ksp_ = nullptr;
+  // begin_local(): the rows R, the sub-matrix A_RR, its KSP, and c_R = A_RS u_S.
+  VecScatter loc_sct_ = nullptr;  // the rows R of a dm_vel Vec <-> the sub-problem's Vecs
+  Mat Aloc_ = nullptr;
+  KSP kloc_ = nullptr;
+  Vec bloc_ = nullptr, xloc_ = nullptr, cloc_ = nullptr, work_ = nullptr;
+  void gather_local(Vec full, Vec sub) const;
   Vec wall_rhs_ = nullptr;  // moving-wall contributions c U / h, depend on eta
   Vec lrho_ = nullptr, leta_ = nullptr, letan_ = nullptr, lvel_ = nullptr, lvel_old_ = nullptr,
       lp_ = nullptr;

@@ -114,6 +114,8 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.max_fp_iters", lp_.max_fp_iters);
   h.set("loop.fp_iters_total", lp_.fp_iters_total);
   h.set("loop.visc_its_total", lp_.visc_its_total);
+  h.set("loop.visc_polish_its_total", lp_.visc_polish_its_total);
+  h.set("loop.visc_polish_steps", lp_.visc_polish_steps);
   if (collapse_) collapse_->save(h);
   const StepStats& l = lp_.last;
   h.set("last.visc_its", l.visc_its);
@@ -187,6 +189,9 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   lp_.max_fp_iters = static_cast<int>(h.get_int("loop.max_fp_iters"));
   lp_.fp_iters_total = h.has("loop.fp_iters_total") ? h.get_int("loop.fp_iters_total") : 0;
   lp_.visc_its_total = h.has("loop.visc_its_total") ? h.get_int("loop.visc_its_total") : 0;
+  lp_.visc_polish_its_total =
+      h.has("loop.visc_polish_its_total") ? h.get_int("loop.visc_polish_its_total") : 0;
+  lp_.visc_polish_steps = h.has("loop.visc_polish_steps") ? h.get_int("loop.visc_polish_steps") : 0;
   StepStats& l = lp_.last;
   l.visc_its = static_cast<int>(h.get_int("last.visc_its"));
   l.pres_its = static_cast<int>(h.get_int("last.pres_its"));
@@ -368,6 +373,8 @@ RunSummary Simulation::run() {
         .set("max_fp_iters", static_cast<long long>(lp_.max_fp_iters))
         .set("fp_iters_total", lp_.fp_iters_total)
         .set("visc_its_total", lp_.visc_its_total)
+        .set("visc_polish_its_total", lp_.visc_polish_its_total)
+        .set("visc_polish_steps", lp_.visc_polish_steps)
         .set("warnings_fp_capped_steps", lp_.fp_capped_steps)
         .set("fp_capped_max_change", lp_.fp_capped_change)
         .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
@@ -479,6 +486,8 @@ RunSummary Simulation::run() {
     lp_.max_fp_iters = std::max(lp_.max_fp_iters, last.fp_iters);
     lp_.fp_iters_total += last.fp_iters;
     lp_.visc_its_total += last.visc_its;
+    lp_.visc_polish_its_total += last.visc_polish_its;
+    if (last.visc_polish_its > 0) ++lp_.visc_polish_steps;
     lp_.dt_prev = dt;
 
     // 1. Failure detection: a non-finite value in any prognostic field, or a speed no flow of

@@ -97,6 +97,9 @@ class Simulation {
     long long restarts = 0;
     int max_fp_iters = 0;
     long long fp_iters_total = 0, visc_its_total = 0;  // sums over the steps (cost measures)
+    // solver.viscous_local_margin: iterations of the closing full solves (included in
+    // visc_its_total), and the steps where it took any: what the local solves missed.
+    long long visc_polish_its_total = 0, visc_polish_steps = 0;
     StepStats last;                  // the last step's statistics (diagnostics columns)
   };
   void save_checkpoint(const std::string& reason);

@@ -246,6 +246,63 @@ void Stepper::set_plastic_region(const State& s) {
     predictor_->set_plastic_region(-e[0] - 2, e[2] + 3, -e[1] - 2, e[3] + 3);
 }
 
+std::vector<PetscInt> Stepper::local_rows(const State& s, int margin) const {
+  const Box& b = g_.box();
+  Vec m, lm;
+  GF_PETSC(DMGetGlobalVector(g_.dm_cell(), &m));
+  GF_PETSC(DMGetLocalVector(g_.dm_cell(), &lm));
+  {
+    const PetscScalar *k, *ph;
+    PetscScalar* o;
+    GF_PETSC(VecGetArrayRead(kappa_, &k));
+    GF_PETSC(VecGetArrayRead(s.phi, &ph));
+    GF_PETSC(VecGetArray(m, &o));
+    PetscInt len;
+    GF_PETSC(VecGetLocalSize(m, &len));
+    for (PetscInt c = 0; c < len; ++c) o[c] = (k[c] > 0 || ph[c] < 0) ? 1.0 : 0.0;
+    GF_PETSC(VecRestoreArray(m, &o));
+    GF_PETSC(VecRestoreArrayRead(s.phi, &ph));
+    GF_PETSC(VecRestoreArrayRead(kappa_, &k));
+  }
+  // Box dilation by margin cells, up to the ghost width per exchange.
+  for (int left = margin; left > 0;) {
+    const int w = std::min<int>(left, Grid::kGhost);
+    left -= w;
+    to_local(g_.dm_cell(), m, lm);
+    const PetscScalar** l;
+    PetscScalar** o;
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lm, &l));
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), m, &o));
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        if (o[j][i] > 0) continue;
+        for (PetscInt jj = std::max<PetscInt>(j - w, 0); jj <= std::min<PetscInt>(j + w, b.ny - 1); ++jj)
+          for (PetscInt ii = i - w; ii <= i + w; ++ii)
+            if (b.has_cell_x(ii) && l[jj][ii] > 0) {
+              o[j][i] = 1.0;
+              jj = b.ny;  // leave both loops
+              break;
+            }
+      }
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), m, &o));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lm, &l));
+  }
+  std::vector<PetscInt> rows;
+  const PetscScalar* o;
+  PetscInt len;
+  GF_PETSC(VecGetLocalSize(m, &len));
+  GF_PETSC(VecGetArrayRead(m, &o));
+  for (PetscInt c = 0; c < len; ++c)
+    if (o[c] > 0) {  // the u and v rows of the cell: its left and bottom faces
+      rows.push_back(2 * c);
+      rows.push_back(2 * c + 1);
+    }
+  GF_PETSC(VecRestoreArrayRead(m, &o));
+  GF_PETSC(DMRestoreLocalVector(g_.dm_cell(), &lm));
+  GF_PETSC(DMRestoreGlobalVector(g_.dm_cell(), &m));
+  return rows;
+}
+
 momentum::Predictor::WallContact Stepper::wall_contact(const State& s) const {
   if (!predictor_ || !predictor_->has_wall_friction()) return {};
   return predictor_->wall_contact(s.s_wall, kappa_b_);
@@ -403,7 +460,17 @@ StepStats Stepper::step(State& s, double dt) {
       if (track_u) GF_PETSC(VecCopy(u_tilde_, rhs0_mon_));
       {
         prof::Scope ps(prof::ViscousSolve);
-        st.visc_its += predictor_->solve(rhs_, u_tilde_);
+        // From the second iteration on, only the plastic terms change the right-hand side.
+        if (k == 2 && cfg_.viscous_local_margin > 0) {
+          // Not worth it when R is most of the domain (a one-phase run: all of it).
+          std::vector<PetscInt> rows = local_rows(s, cfg_.viscous_local_margin);
+          PetscInt n[2] = {static_cast<PetscInt>(rows.size()), 0}, tot[2];
+          GF_PETSC(VecGetLocalSize(u_tilde_, &n[1]));
+          MPI_Allreduce(n, tot, 2, MPIU_INT, MPI_SUM, g_.comm());
+          if (tot[0] < 0.7 * tot[1]) predictor_->begin_local(rows, rhs_, u_tilde_);
+        }
+        st.visc_its += predictor_->local_active() ? predictor_->solve_local(rhs_, u_tilde_)
+                                                  : predictor_->solve(rhs_, u_tilde_);
       }
       PetscReal du = 0, un = 0;
       if (track_u) {
@@ -492,6 +559,14 @@ StepStats Stepper::step(State& s, double dt) {
       }
     }
     st.fp_capped = !st.fp_converged;
+    if (predictor_->local_active()) {
+      // The full system for the last S and s_t: what the frozen rows missed (a residual below
+      // the tolerance when the margin is wide enough; then this solve takes no iteration).
+      prof::Scope ps(prof::ViscousSolve);
+      predictor_->end_local();
+      st.visc_polish_its = predictor_->solve(rhs_, u_tilde_);
+      st.visc_its += st.visc_polish_its;
+    }
     st.mu_i_floor_cells = mu_i_floor_cells_;
     st.mu_i_cap_cells = mu_i_cap_cells_;
   }

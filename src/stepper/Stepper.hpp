@@ -43,6 +43,7 @@ struct PhysicsConfig {
   double redistance_cfl = 0.5;
   Boundaries bc;
   double pressure_rtol = 1e-10, viscous_rtol = 1e-10;
+  int viscous_local_margin = 0;  // cells; > 0: local solves in the fixed point (begin_local)
   rheology::Params rheo;                       // yield stress, viscosity law, fixed point
   std::array<double, 4> wall_tan_b{0, 0, 0, 0};  // Coulomb tan(alpha_b): left, right, bottom, top
   PrescribedFlow prescribed = PrescribedFlow::None;
@@ -51,6 +52,7 @@ struct PhysicsConfig {
 
 struct StepStats {
   int visc_its = 0, pres_its = 0;  // KSP iterations: viscous (all fixed-point iterations), pressure
+  int visc_polish_its = 0;         // of them, the full solve closing local solves (0: none missed)
   int fp_iters = 0;                // fixed-point iterations of eq. 31
   double fp_change = 0;            // last change of S and s_t (dimensionless)
   bool fp_converged = false;       // met fp_tol (or fp_tol_u)
@@ -122,6 +124,9 @@ class Stepper {
   // Limits the plastic terms and D(u~) of this step's fixed point to the cells with kappa > 0
   // or phi < 0, widened by 2 cells (Predictor::set_plastic_region); collective.
   void set_plastic_region(const State& s);
+  // The rows of a dm_vel global Vec (local indices, ascending) of the cells with kappa > 0 or
+  // phi < 0 widened by margin cells (a box in the cell indices), for Predictor::begin_local.
+  std::vector<PetscInt> local_rows(const State& s, int margin) const;
   Vec eta_node_ = nullptr, rhs_ = nullptr, u_tilde_ = nullptr, lphi_ = nullptr;
 };
 

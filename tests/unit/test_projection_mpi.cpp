@@ -203,3 +203,108 @@ TEST(Viscous, OperatorIsSymmetricAndSolvesToTolerance) {
   VecNorm(y, NORM_INFINITY, &e);
   EXPECT_LT(e, 1e-8);
 }
+
+// Predictor::begin_local / solve_local (solver.viscous_local_margin): a change of the right-hand
+// side in a patch of cells, solved on the patch widened by m cells with the rest frozen. With
+// every row in R the sub-problem is the full one; with fewer, the error is what the frozen rows
+// miss, which falls geometrically with m (the mass term dominates the operator); rows outside R
+// are not touched.
+TEST(Viscous, LocalSolveConvergesToTheFullSolveWithTheMargin) {
+  Grid g(PETSC_COMM_WORLD, 48, 32, 0.3, 0.2);
+  Field rho(g.dm_cell(), "rho"), eta(g.dm_cell(), "eta"), etan(g.dm_cell(), "etan");
+  column_density(g, rho);
+  VecCopy(rho, eta);  // 0.5 Pa s in the column, 3.9e-4 in air
+  VecScale(eta, 0.5 / 1550.0);
+  VecCopy(eta, etan);
+  Boundaries bc;
+  bc.left = {WallType::Navier, 1.0, 0.0};
+  bc.bottom = {WallType::NoSlip, 0.0, 0.0};
+  momentum::Predictor pred(g, bc, 1e-13);
+  // dt = 1e-2 s: eta / h^2 = 1.3e4 against rho a0 / dt = 1.6e5 in the column, 180 in air.
+  pred.assemble(rho, eta, etan, 1.5 / 1e-2);
+  const Box& b = g.box();
+  Field b0(g.dm_vel(), "b0"), b1(g.dm_vel(), "b1"), y0(g.dm_vel(), "y0"), yf(g.dm_vel(), "yf"),
+      yl(g.dm_vel(), "yl");
+  Vel** a;
+  DMDAVecGetArray(g.dm_vel(), b0, &a);
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      a[j][i].u = i > 0 ? 1e3 * std::sin(7 * b.xf(i) + 3 * b.yc(j)) : 0.0;
+      a[j][i].v = j > 0 ? 1e3 * std::cos(2 * b.xc(i) * b.yf(j)) : 0.0;
+    }
+  DMDAVecRestoreArray(g.dm_vel(), b0, &a);
+  VecSet(y0, 0.0);
+  pred.solve(b0, y0);
+  // The patch: cells 4..9 x 6..11, inside the column (cells i < 14, j < 19).
+  auto in_patch = [](PetscInt i, PetscInt j, PetscInt m) {
+    return i >= 4 - m && i < 10 + m && j >= 6 - m && j < 12 + m;
+  };
+  VecCopy(b0, b1);
+  DMDAVecGetArray(g.dm_vel(), b1, &a);
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i)
+      if (in_patch(i, j, 0)) {
+        a[j][i].u += 5e3;
+        a[j][i].v -= 3e3;
+      }
+  DMDAVecRestoreArray(g.dm_vel(), b1, &a);
+  VecCopy(y0, yf);
+  pred.solve(b1, yf);
+  Field d(g.dm_vel(), "d");
+  VecWAXPY(d, -1.0, y0, yf);
+  PetscReal change;
+  VecNorm(d, NORM_INFINITY, &change);
+  ASSERT_GT(change, 1e-3);
+  int its = 0;
+  auto local_error = [&](PetscInt m, PetscReal* untouched) {
+    std::vector<PetscInt> rows;
+    for (PetscInt j = b.ys, c = 0; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i, ++c)
+        if (in_patch(i, j, m)) {
+          rows.push_back(2 * c);
+          rows.push_back(2 * c + 1);
+        }
+    VecCopy(y0, yl);
+    pred.begin_local(rows, b1, yl);
+    EXPECT_TRUE(pred.local_active());
+    its = pred.solve_local(b1, yl);
+    pred.end_local();
+    // Outside R: exactly y0.
+    const PetscScalar *l, *z;
+    VecGetArrayRead(yl, &l);
+    VecGetArrayRead(y0, &z);
+    PetscReal out = 0;
+    std::size_t r = 0;
+    PetscInt len;
+    VecGetLocalSize(yl, &len);
+    for (PetscInt q = 0; q < len; ++q) {
+      if (r < rows.size() && rows[r] == q) { ++r; continue; }
+      out = std::max(out, std::abs(l[q] - z[q]));
+    }
+    VecRestoreArrayRead(y0, &z);
+    VecRestoreArrayRead(yl, &l);
+    MPI_Allreduce(&out, untouched, 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD);
+    VecWAXPY(d, -1.0, yf, yl);
+    PetscReal e;
+    VecNorm(d, NORM_INFINITY, &e);
+    return e / change;
+  };
+  PetscReal untouched;
+  const PetscReal e_all = local_error(100, &untouched);
+  EXPECT_LT(e_all, 1e-9);
+  std::vector<PetscReal> e;
+  std::vector<int> it;
+  for (PetscInt m : {1, 3, 6}) {
+    e.push_back(local_error(m, &untouched));
+    it.push_back(its);
+    EXPECT_EQ(untouched, 0.0) << "margin " << m;
+  }
+  PetscPrintf(PETSC_COMM_WORLD, "local solve error / change: all rows %.2e, margin 1: %.2e (%d its), 3: %.2e (%d), 6: %.2e (%d)\n",
+              (double)e_all, (double)e[0], it[0], (double)e[1], it[1], (double)e[2], it[2]);
+  EXPECT_GT(e[0], 10 * e[1]);
+  EXPECT_GT(e[1], 10 * e[2]);
+  EXPECT_LT(e[2], 1e-5);
+  // Nothing to solve on any rank: the local solves stay off.
+  pred.begin_local({}, b1, yl);
+  EXPECT_FALSE(pred.local_active());
+}
