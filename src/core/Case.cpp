@@ -25,6 +25,7 @@ const std::vector<std::string> kShapes{"none",   "rectangle", "layer",
                                        "circle", "zalesak",   "trapezoid"};
 const std::vector<std::string> kPrescribed{"none", "rotation", "single_vortex"};
 const std::vector<std::string> kInitialVelocities{"none", "vortex"};
+const std::vector<std::string> kInitialStresses{"zero", "equilibrium"};
 const std::vector<std::string> kWalls{"free_slip", "no_slip", "navier"};
 const std::vector<std::string> kProbeFields{"phi", "rho",    "u",      "v",     "speed",
                                             "p",   "eta",    "D_norm", "S_norm", "kappa"};
@@ -269,6 +270,20 @@ Params case_params() {
              "vortex: amplitude A: the peak of v with walls (u peaks at A Lx/Ly), the peak of "
              "u with periodic_x (v peaks at 2 A Ly/Lx).");
 
+  p.add_enum("initial.stress", "zero", kInitialStresses,
+             "Initial plastic stress S (and wall stress s_t): zero (the paper: the column is "
+             "released with S = 0, and eq. 31's relaxation theta (S^n - S) builds the stresses "
+             "over the first steps, while the material moves a little); equilibrium: before "
+             "t = 0, pseudo-steps of eq. 31-32 from rest, each one's velocity discarded and its "
+             "S, s_t and p kept, until the granular velocity one step makes is below initial.stress_tol "
+             "(a statically admissible stress state where one exists: a pile, a block held by "
+             "friction); summary.json: initial_stress_steps, initial_stress_speed_mps.");
+  p.add_int("initial.stress_max_steps", "steps", 1000, closed(1, 1e6),
+            "equilibrium: pseudo-steps at most; a warning if the tolerance is not reached.");
+  p.add_real("initial.stress_tol", "m/s", 1e-7, Range::gt(0),
+             "equilibrium: the largest granular velocity (cells with phi < -eps) the last "
+             "pseudo-step may make.");
+
   p.add_enum("flow.prescribed", "none", kPrescribed,
              "none: solve the momentum equations. Otherwise a level-set-only test with a "
              "prescribed velocity: rotation (solid body, omega about (cx, cy)); "
@@ -484,6 +499,9 @@ CaseConfig fill(const Params& p) {
   in.velocity =
       enum_of<CaseConfig::InitialVelocity>(kInitialVelocities, p.get_string("initial.velocity"));
   in.velocity_amplitude = p.get_real("initial.velocity_amplitude");
+  in.stress_equilibrium = p.get_string("initial.stress") == "equilibrium";
+  in.stress_max_steps = static_cast<int>(p.get_int("initial.stress_max_steps"));
+  in.stress_tol = p.get_real("initial.stress_tol");
 
   c.flow.prescribed = enum_of<Prescribed>(kPrescribed, p.get_string("flow.prescribed"));
   c.flow.omega = p.get_real("flow.omega");

@@ -75,6 +75,9 @@ struct CaseConfig {
     double slope_deg = 0;                   // degrees, trapezoid side slopes (a pile)
     InitialVelocity velocity = InitialVelocity::None;
     double velocity_amplitude = 0;  // m/s, peak speed scale of the initial vortex
+    bool stress_equilibrium = false;  // initial.stress = "equilibrium"
+    int stress_max_steps = 0;         // pseudo-steps at most
+    double stress_tol = 0;            // m/s
     bool operator==(const Initial&) const = default;
   };
   struct Flow {

@@ -77,6 +77,9 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
   r.dt_fixed = c.time.dt_mode == CaseConfig::DtMode::Fixed;
   r.dt = r.dt_fixed ? c.time.dt : initial_dt(c);
   r.cfl = c.time.cfl;
+  r.stress_equilibrium = c.initial.stress_equilibrium;
+  r.stress_max_steps = c.initial.stress_max_steps;
+  r.stress_tol = c.initial.stress_tol;
   r.dt_max = c.time.dt_max;
   r.dt_min = c.time.dt_min;
   r.max_steps = c.time.max_steps;

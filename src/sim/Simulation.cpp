@@ -116,6 +116,8 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.visc_its_total", lp_.visc_its_total);
   h.set("loop.visc_polish_its_total", lp_.visc_polish_its_total);
   h.set("loop.visc_polish_steps", lp_.visc_polish_steps);
+  h.set("loop.stress_steps", lp_.stress_steps);
+  h.set("loop.stress_speed", lp_.stress_speed);
   if (collapse_) collapse_->save(h);
   const StepStats& l = lp_.last;
   h.set("last.visc_its", l.visc_its);
@@ -192,6 +194,8 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   lp_.visc_polish_its_total =
       h.has("loop.visc_polish_its_total") ? h.get_int("loop.visc_polish_its_total") : 0;
   lp_.visc_polish_steps = h.has("loop.visc_polish_steps") ? h.get_int("loop.visc_polish_steps") : 0;
+  lp_.stress_steps = h.has("loop.stress_steps") ? h.get_int("loop.stress_steps") : -1;
+  lp_.stress_speed = h.has("loop.stress_speed") ? h.get_double("loop.stress_speed") : -1;
   StepStats& l = lp_.last;
   l.visc_its = static_cast<int>(h.get_int("last.visc_its"));
   l.pres_its = static_cast<int>(h.get_int("last.pres_its"));
@@ -381,6 +385,8 @@ RunSummary Simulation::run() {
         .set("warnings_pressure_gmres_fallbacks", lp_.pres_fallbacks)
         .set("mu_i_floor_cells_max", lp_.mu_floor_max)
         .set("mu_i_cap_cells_max", lp_.mu_cap_max);
+    if (lp_.stress_steps >= 0)
+      js.set("initial_stress_steps", lp_.stress_steps).set("initial_stress_speed_mps", lp_.stress_speed);
     collapse.summarize(js);
     {
       // Time by phase (core/Profile.hpp), the largest over the ranks, s: for this process, i.e.
@@ -438,6 +444,33 @@ RunSummary Simulation::run() {
       stepper_.initialize(s_);
     } catch (const RunError& e) {
       fail(std::string(e.what()) + " (in the initial pressure of the fluid at rest, t = 0)");
+    }
+    if (rc_.stress_equilibrium && !prescribed) {
+      const double dt0 = choose_dt(0.0, 0.0);
+      try {
+        const double eps = stepper_.config().eps;
+        const auto [n, speed] = stepper_.equilibrate(
+            s_, dt0, rc_.stress_max_steps, rc_.stress_tol,
+            [&, k = 0](const State& st) mutable {
+              const double v = diag::max_granular_speed(g_, st.vel, st.phi, eps);
+              if (++k % 50 == 0 && g_.rank() == 0) {
+                std::printf("granflow: initial stress: pseudo-step %d, granular speed %s m/s\n", k,
+                            num(v).c_str());
+                std::fflush(stdout);
+              }
+              return v;
+            });
+        lp_.stress_steps = n;
+        lp_.stress_speed = speed;
+      } catch (const RunError& e) {
+        fail(std::string(e.what()) + " (in the initial stress, initial.stress = \"equilibrium\")");
+      }
+      if (g_.rank() == 0) {
+        std::printf("granflow: initial stress: %lld pseudo-steps of %s s, the last one made %s m/s%s\n",
+                    lp_.stress_steps, num(dt0).c_str(), num(lp_.stress_speed).c_str(),
+                    lp_.stress_speed < rc_.stress_tol ? "" : " (WARNING: above initial.stress_tol: no equilibrium reached)");
+        std::fflush(stdout);
+      }
     }
     // A prescribed flow that returns the interface to its start (one turn, a reversed vortex)
     // has the initial level set as exact answer: keep it for the interface error at the end.

@@ -47,6 +47,9 @@ struct RunConfig {
   double checkpoint_wall_s = 0;             // s of wall clock, 0 = none
   double volume_warn_pct = 1.0;  // %: |granular volume change| above this counts as a warning
   double fp_fail_change = 1.0;   // -: a fixed point at its cap with a larger last change fails
+  bool stress_equilibrium = false;  // initial.stress = "equilibrium" (Stepper::equilibrate)
+  int stress_max_steps = 1000;
+  double stress_tol = 1e-7;  // m/s
   std::vector<io::ProbeSpec> probes;
   diag::CollapseConfig collapse;  // front, profile, deposit measures (diagnostics/Collapse.hpp)
   std::string out_dir;
@@ -101,6 +104,10 @@ class Simulation {
     // visc_its_total), and the steps where it took any: what the local solves missed.
     long long visc_polish_its_total = 0, visc_polish_steps = 0;
     StepStats last;                  // the last step's statistics (diagnostics columns)
+    // initial.stress = "equilibrium": pseudo-steps taken, the velocity the last one made (m/s);
+    // -1: not asked for.
+    long long stress_steps = -1;
+    double stress_speed = -1;
   };
   void save_checkpoint(const std::string& reason);
 

@@ -7,7 +7,9 @@
 //   4. projection (eq. 32): u^{n+1}, p^{n+1}.
 // This is the only code that calls all the layers; diagnostics and output live in sim/.
 #include <array>
+#include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "boundary/Boundary.hpp"
@@ -78,6 +80,13 @@ class Stepper {
   void resume(State& s);
   // Advances s from t^n to t^n + dt.
   StepStats step(State& s, double dt);
+  // initial.stress = "equilibrium", after initialize(): pseudo-steps of length dt from rest,
+  // each one's velocity discarded (phi, t and the step count put back) and its S, s_t and p
+  // kept, until speed(s) after a step (the granular speed: the air, whose density varies across
+  // the interface band, has no equilibrium at rest) is below tol (m/s) or after max_steps.
+  // Returns the pseudo-steps taken and the speed after the last one. Collective.
+  std::pair<int, double> equilibrate(State& s, double dt, int max_steps, double tol,
+                                     const std::function<double(const State&)>& speed);
   // rho, eta (cells) and eta at the nodes from phi (step 2); public for diagnostics and tests.
   void update_properties(State& s);
   // Sets s.vel to the prescribed velocity at time t (level-set-only runs).
