@@ -275,9 +275,9 @@ Params case_params() {
              "released with S = 0, and eq. 31's relaxation theta (S^n - S) builds the stresses "
              "over the first steps, while the material moves a little); equilibrium: before "
              "t = 0, pseudo-steps of eq. 31-32 from rest, each one's velocity discarded and its "
-             "S, s_t and p kept, until the granular velocity one step makes is below initial.stress_tol "
-             "(a statically admissible stress state where one exists: a pile, a block held by "
-             "friction); summary.json: initial_stress_steps, initial_stress_speed_mps.");
+             "S, s_t and p kept, until the granular velocity one step makes is below "
+             "initial.stress_tol (a statically admissible stress state where one exists: a "
+             "pile, a block held by friction); summary.json: initial_stress_steps, initial_stress_speed_mps.");
   p.add_int("initial.stress_max_steps", "steps", 1000, closed(1, 1e6),
             "equilibrium: pseudo-steps at most; a warning if the tolerance is not reached.");
   p.add_real("initial.stress_tol", "m/s", 1e-7, Range::gt(0),

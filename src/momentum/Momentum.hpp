@@ -59,9 +59,10 @@ class Predictor {
   // sub-problem A_RR u_R = rhs_R - A_RS u_S, assembled by MatCreateSubMatrix from the full
   // matrix, so the same discretisation; its tolerance is the full solve's absolute one,
   // rtol ||B rhs|| (B: the full solve's preconditioner), the test KSPConvergedDefault applies to
-  // a warm-started full solve. The sub-problem's rows are dealt out evenly over the ranks. CG moves a residual by one cell per iteration, so while R holds
-  // the granular rows widened by more cells than the iterations a solve takes, the local solve
-  // takes the same steps as the full one. The caller ends the fixed point with a full solve
+  // a warm-started full solve. The sub-problem's rows are dealt out evenly over the ranks.
+  // CG moves a residual by one cell per iteration, so while R holds the granular rows widened
+  // by more cells than the iterations a solve takes, the local solve takes the same steps as
+  // the full one. The caller ends the fixed point with a full solve
   // (solve()), which puts back what the frozen rows missed. Collective; an empty R on every
   // rank leaves the local solves off (local_active() false).
   void begin_local(const std::vector<PetscInt>& rows, Vec rhs, Vec u);

@@ -193,7 +193,8 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   lp_.visc_its_total = h.has("loop.visc_its_total") ? h.get_int("loop.visc_its_total") : 0;
   lp_.visc_polish_its_total =
       h.has("loop.visc_polish_its_total") ? h.get_int("loop.visc_polish_its_total") : 0;
-  lp_.visc_polish_steps = h.has("loop.visc_polish_steps") ? h.get_int("loop.visc_polish_steps") : 0;
+  lp_.visc_polish_steps =
+      h.has("loop.visc_polish_steps") ? h.get_int("loop.visc_polish_steps") : 0;
   lp_.stress_steps = h.has("loop.stress_steps") ? h.get_int("loop.stress_steps") : -1;
   lp_.stress_speed = h.has("loop.stress_speed") ? h.get_double("loop.stress_speed") : -1;
   StepStats& l = lp_.last;
@@ -386,7 +387,8 @@ RunSummary Simulation::run() {
         .set("mu_i_floor_cells_max", lp_.mu_floor_max)
         .set("mu_i_cap_cells_max", lp_.mu_cap_max);
     if (lp_.stress_steps >= 0)
-      js.set("initial_stress_steps", lp_.stress_steps).set("initial_stress_speed_mps", lp_.stress_speed);
+      js.set("initial_stress_steps", lp_.stress_steps)
+          .set("initial_stress_speed_mps", lp_.stress_speed);
     collapse.summarize(js);
     {
       // Time by phase (core/Profile.hpp), the largest over the ranks, s: for this process, i.e.
@@ -454,8 +456,8 @@ RunSummary Simulation::run() {
             [&, k = 0](const State& st) mutable {
               const double v = diag::max_granular_speed(g_, st.vel, st.phi, eps);
               if (++k % 50 == 0 && g_.rank() == 0) {
-                std::printf("granflow: initial stress: pseudo-step %d, granular speed %s m/s\n", k,
-                            num(v).c_str());
+                std::printf("granflow: initial stress: pseudo-step %d, granular speed %s m/s\n",
+                            k, num(v).c_str());
                 std::fflush(stdout);
               }
               return v;
@@ -463,12 +465,16 @@ RunSummary Simulation::run() {
         lp_.stress_steps = n;
         lp_.stress_speed = speed;
       } catch (const RunError& e) {
-        fail(std::string(e.what()) + " (in the initial stress, initial.stress = \"equilibrium\")");
+        fail(std::string(e.what()) +
+             " (in the initial stress, initial.stress = \"equilibrium\")");
       }
       if (g_.rank() == 0) {
-        std::printf("granflow: initial stress: %lld pseudo-steps of %s s, the last one made %s m/s%s\n",
-                    lp_.stress_steps, num(dt0).c_str(), num(lp_.stress_speed).c_str(),
-                    lp_.stress_speed < rc_.stress_tol ? "" : " (WARNING: above initial.stress_tol: no equilibrium reached)");
+        std::printf(
+            "granflow: initial stress: %lld pseudo-steps of %s s, the last one made %s m/s%s\n",
+            lp_.stress_steps, num(dt0).c_str(), num(lp_.stress_speed).c_str(),
+            lp_.stress_speed < rc_.stress_tol
+                ? ""
+                : " (WARNING: above initial.stress_tol: no equilibrium reached)");
         std::fflush(stdout);
       }
     }

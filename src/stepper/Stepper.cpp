@@ -276,7 +276,8 @@ std::vector<PetscInt> Stepper::local_rows(const State& s, int margin) const {
     for (PetscInt j = b.ys; j < b.ye(); ++j)
       for (PetscInt i = b.xs; i < b.xe(); ++i) {
         if (o[j][i] > 0) continue;
-        for (PetscInt jj = std::max<PetscInt>(j - w, 0); jj <= std::min<PetscInt>(j + w, b.ny - 1); ++jj)
+        const PetscInt j0 = std::max<PetscInt>(j - w, 0), j1 = std::min<PetscInt>(j + w, b.ny - 1);
+        for (PetscInt jj = j0; jj <= j1; ++jj)
           for (PetscInt ii = i - w; ii <= i + w; ++ii)
             if (b.has_cell_x(ii) && l[jj][ii] > 0) {
               o[j][i] = 1.0;

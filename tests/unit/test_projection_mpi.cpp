@@ -299,7 +299,9 @@ TEST(Viscous, LocalSolveConvergesToTheFullSolveWithTheMargin) {
     it.push_back(its);
     EXPECT_EQ(untouched, 0.0) << "margin " << m;
   }
-  PetscPrintf(PETSC_COMM_WORLD, "local solve error / change: all rows %.2e, margin 1: %.2e (%d its), 3: %.2e (%d), 6: %.2e (%d)\n",
+  PetscPrintf(PETSC_COMM_WORLD,
+              "local solve error / change: all rows %.2e, margin 1: %.2e (%d its), 3: %.2e (%d), "
+              "6: %.2e (%d)\n",
               (double)e_all, (double)e[0], it[0], (double)e[1], it[1], (double)e[2], it[2]);
   EXPECT_GT(e[0], 10 * e[1]);
   EXPECT_GT(e[1], 10 * e[2]);

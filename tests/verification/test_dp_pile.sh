@@ -27,7 +27,8 @@ a = [float(r["max_speed"]) for r in rows]
 v = [float(r["volume_change_pct"]) for r in rows]
 summ = json.load(open(sys.argv[2]))
 steps, v0 = summ.get("initial_stress_steps", -1), summ.get("initial_stress_speed_mps", 1.0)
-print(f"rows {len(rows)}, t_end {t[-1]:.3f} s; initial stress: {steps} pseudo-steps, last {v0:.2e} m/s")
+print(f"rows {len(rows)}, t_end {t[-1]:.3f} s; "
+      f"initial stress: {steps} pseudo-steps, last {v0:.2e} m/s")
 print(f"max granular speed over the run: {max(g):.2e} m/s")
 print(f"max speed (air included) {max(a):.2e} m/s; volume change {min(v):+.5f} .. {max(v):+.5f} %")
 ok = (abs(t[-1] - 0.5) < 1e-9 and len(rows) >= 50 and max(g) < 1e-6 and 0 < steps and v0 < 1e-7
