@@ -903,7 +903,7 @@ def main():
                          cell(r.v("max_front_x_m"), B_RUNOUT_EXP * (1 - B_HP_DEFICIT), B_RUNOUT_EXP),
                          f"{r.v('backwall_height_m'):.4f}", cell(r.v("tf_s"), B_HP_TF),
                          f"{r.v('max_p_granular_ratio'):.3f}", f"{r.v('volume_change_pct'):+.2f}",
-                         mins(r.v("wall_s"))])
+                         mins(r.v("wall_s")) + on_ranks(r)])
         else:
             rows.append([r.name, r.status, r.make_cmd(), "", "", "", "", "", ""])
     L += [table(["run", "grid", "runout (m)", "furthest front (m)", "back wall (m)", "t_f (s)",

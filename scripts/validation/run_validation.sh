@@ -16,8 +16,12 @@
 # runs/validation/). GRANFLOW=path chooses the binary (default build/granflow, built by
 # scripts/build.sh if missing); OUT_ROOT=dir the output root (default runs/validation).
 #
-# Times are wall times on one core of the development machine (2 cores, unloaded); measured for
-# the default tier, extrapolated (cells x steps) for the full tier.
+# Times are wall times on one core of the development machine (2 cores, unloaded), for the code
+# with local viscous solves (docs/PERFORMANCE.md, fourth round): measured for a_n128 (190 s);
+# from 2-rank runs times 1.5 (the 1-to-2-rank speed-up at n = 256) for a_n128_eta0.01 (242 s),
+# b_hp_n128 (408 s), a_n256 (23.4 min) and b_n256_w15 (22.2 min); the others are earlier
+# one-core times scaled by the 0.6 that case A at n = 128 gained. The default tier's are older
+# measurements and likely high.
 set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
@@ -46,17 +50,17 @@ RUNS=(
   "b_n64_w15|default|2 min|$B|--set grid.n=64"
   "b_n64_w12.5|default|2 min|$B|--set grid.n=64 $(wall 12.5)"
   "b_n64_w17.5|default|2 min|$B|--set grid.n=64 $(wall 17.5)"
-  "a_n128|full|30-45 min|$A|--set grid.n=128"
-  "a_hp_n128|full|30-45 min|$AHP|--set grid.n=128"
-  "a_n128_eta0.01|full|1-1.5 h|$A|--set grid.n=128 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
-  "b_hp_n64|full|8 min|$BHP|--set grid.n=64"
-  "b_hp_n64_gmres|full|8 min|$BHP|--set grid.n=64|-pres_ksp_type gmres"
-  "b_n128_w15|full|15-25 min|$B|--set grid.n=128"
-  "b_n128_w12.5|full|15-25 min|$B|--set grid.n=128 $(wall 12.5)"
-  "b_n128_w17.5|full|15-25 min|$B|--set grid.n=128 $(wall 17.5)"
-  "b_hp_n128|full|1-1.5 h|$BHP|--set grid.n=128"
-  "a_n256|full|4-6 h|$A|--set grid.n=256"
-  "b_n256_w15|full|2-4 h (the paper's 768 x 256)|$B|--set grid.n=256"
+  "a_n128|full|3-4 min|$A|--set grid.n=128"
+  "a_hp_n128|full|15-25 min|$AHP|--set grid.n=128"
+  "a_n128_eta0.01|full|6-8 min|$A|--set grid.n=128 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
+  "b_hp_n64|full|3-4 min|$BHP|--set grid.n=64"
+  "b_hp_n64_gmres|full|3-4 min|$BHP|--set grid.n=64|-pres_ksp_type gmres"
+  "b_n128_w15|full|5-7 min|$B|--set grid.n=128"
+  "b_n128_w12.5|full|5-7 min|$B|--set grid.n=128 $(wall 12.5)"
+  "b_n128_w17.5|full|5-7 min|$B|--set grid.n=128 $(wall 17.5)"
+  "b_hp_n128|full|10-12 min|$BHP|--set grid.n=128"
+  "a_n256|full|35-45 min|$A|--set grid.n=256"
+  "b_n256_w15|full|35-45 min (the paper's 768 x 256)|$B|--set grid.n=256"
 )
 
 selected() {  # name tier
