@@ -26,6 +26,7 @@ const std::vector<std::string> kShapes{"none",   "rectangle", "layer",
 const std::vector<std::string> kPrescribed{"none", "rotation", "single_vortex"};
 const std::vector<std::string> kInitialVelocities{"none", "vortex"};
 const std::vector<std::string> kInitialStresses{"zero", "equilibrium"};
+const std::vector<std::string> kInitialPressures{"projection", "hydrostatic"};
 const std::vector<std::string> kWalls{"free_slip", "no_slip", "navier"};
 const std::vector<std::string> kProbeFields{"phi", "rho",    "u",      "v",     "speed",
                                             "p",   "eta",    "D_norm", "S_norm", "kappa"};
@@ -278,6 +279,13 @@ Params case_params() {
              "S, s_t and p kept, until the granular velocity one step makes is below "
              "initial.stress_tol (a statically admissible stress state where one exists: a "
              "pile, a block held by friction); summary.json: initial_stress_steps, initial_stress_speed_mps.");
+  p.add_enum("initial.pressure", "projection", kInitialPressures,
+             "Initial pressure p^0: projection (the pressure of a fluid released from rest: "
+             "the projection of u* = g, which is below the column's weight near its free "
+             "sides); hydrostatic (the column at rest behind its gate, the paper's 'initial "
+             "static state' of Figs. 5 and 18: p^0 = int_y^Ly rho |g_y| ds in each column of "
+             "cells). Only the first step's yield stress (eq. 19, from p^n) sees the "
+             "difference: the projection of that step sets p^1.");
   p.add_int("initial.stress_max_steps", "steps", 1000, closed(1, 1e6),
             "equilibrium: pseudo-steps at most; a warning if the tolerance is not reached.");
   p.add_real("initial.stress_tol", "m/s", 1e-7, Range::gt(0),
@@ -500,6 +508,7 @@ CaseConfig fill(const Params& p) {
       enum_of<CaseConfig::InitialVelocity>(kInitialVelocities, p.get_string("initial.velocity"));
   in.velocity_amplitude = p.get_real("initial.velocity_amplitude");
   in.stress_equilibrium = p.get_string("initial.stress") == "equilibrium";
+  in.pressure_hydrostatic = p.get_string("initial.pressure") == "hydrostatic";
   in.stress_max_steps = static_cast<int>(p.get_int("initial.stress_max_steps"));
   in.stress_tol = p.get_real("initial.stress_tol");
 

@@ -76,6 +76,7 @@ struct CaseConfig {
     InitialVelocity velocity = InitialVelocity::None;
     double velocity_amplitude = 0;  // m/s, peak speed scale of the initial vortex
     bool stress_equilibrium = false;  // initial.stress = "equilibrium"
+    bool pressure_hydrostatic = false;  // initial.pressure = "hydrostatic"
     int stress_max_steps = 0;         // pseudo-steps at most
     double stress_tol = 0;            // m/s
     bool operator==(const Initial&) const = default;

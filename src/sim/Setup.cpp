@@ -34,6 +34,7 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.pressure_rtol = c.solver.pressure_rtol;
   p.viscous_rtol = c.solver.viscous_rtol;
   p.viscous_local_margin = c.solver.viscous_local_margin;
+  p.initial_pressure_hydrostatic = c.initial.pressure_hydrostatic;
   switch (c.flow.prescribed) {
     case CaseConfig::Prescribed::None: p.prescribed = PrescribedFlow::None; break;
     case CaseConfig::Prescribed::Rotation: p.prescribed = PrescribedFlow::Rotation; break;

@@ -362,6 +362,11 @@ void Stepper::initialize(State& s) {
   GF_PETSC(VecSet(s.p, 0.0));
   projector_->assemble(s.rho);
   projector_->project(u_tilde_, s.p, s.rho, 1.0, 1.0);
+  // initial.pressure = "hydrostatic": the weight of each column of cells above the point (the
+  // granular column at rest behind its gate, the paper's initial static state), instead of the
+  // pressure of a fluid released from rest. The projection above still assembles the matrix.
+  if (cfg_.initial_pressure_hydrostatic)
+    rheology::hydrostatic_pressure(g_, s.rho, 1.0, std::abs(cfg_.gravity[1]), s.p);
 }
 
 void Stepper::resume(State& s) {

@@ -46,6 +46,7 @@ struct PhysicsConfig {
   Boundaries bc;
   double pressure_rtol = 1e-10, viscous_rtol = 1e-10;
   int viscous_local_margin = 0;  // cells; > 0: local solves in the fixed point (begin_local)
+  bool initial_pressure_hydrostatic = false;  // initial.pressure = "hydrostatic"
   rheology::Params rheo;                       // yield stress, viscosity law, fixed point
   std::array<double, 4> wall_tan_b{0, 0, 0, 0};  // Coulomb tan(alpha_b): left, right, bottom, top
   PrescribedFlow prescribed = PrescribedFlow::None;
