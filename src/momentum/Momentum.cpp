@@ -252,17 +252,25 @@ void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoe
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &lv));
 }
 
-int Predictor::solve(Vec rhs, Vec u_tilde) {
-  GF_PETSC(KSPSolve(ksp_, rhs, u_tilde));
+namespace {
+// The iterations of the solve just made by ksp; RunError "<what> did not converge: <reason>
+// after N iterations; <hint>" if it diverged.
+int iterations_or_throw(KSP ksp, const std::string& what, const std::string& hint) {
   KSPConvergedReason reason;
   PetscInt its;
-  GF_PETSC(KSPGetConvergedReason(ksp_, &reason));
-  GF_PETSC(KSPGetIterationNumber(ksp_, &its));
+  GF_PETSC(KSPGetConvergedReason(ksp, &reason));
+  GF_PETSC(KSPGetIterationNumber(ksp, &its));
   if (reason < 0)
-    throw RunError("viscous solve (prefix -visc_) did not converge: " +
-                   std::string(KSPConvergedReasons[reason]) + " after " + std::to_string(its) +
-                   " iterations; try a smaller time step or -visc_pc_type hypre");
+    throw RunError(what + " did not converge: " + std::string(KSPConvergedReasons[reason]) +
+                   " after " + std::to_string(its) + " iterations; " + hint);
   return static_cast<int>(its);
+}
+}  // namespace
+
+int Predictor::solve(Vec rhs, Vec u_tilde) {
+  GF_PETSC(KSPSolve(ksp_, rhs, u_tilde));
+  return iterations_or_throw(ksp_, "viscous solve (prefix -visc_)",
+                             "try a smaller time step or -visc_pc_type hypre");
 }
 
 void Predictor::gather_local(Vec full, Vec sub) const {
@@ -328,17 +336,13 @@ int Predictor::solve_local(Vec rhs, Vec u) {
   GF_PETSC(VecAXPY(bloc_, -1.0, cloc_));
   gather_local(u, xloc_);
   GF_PETSC(KSPSolve(kloc_, bloc_, xloc_));
-  KSPConvergedReason reason;
-  PetscInt its;
-  GF_PETSC(KSPGetConvergedReason(kloc_, &reason));
-  GF_PETSC(KSPGetIterationNumber(kloc_, &its));
-  if (reason < 0)
-    throw RunError("local viscous solve (prefix -visc_, solver.viscous_local_margin) did not "
-                   "converge: " + std::string(KSPConvergedReasons[reason]) + " after " +
-                   std::to_string(its) + " iterations; try solver.viscous_local_margin = 0");
+  const int its = iterations_or_throw(kloc_,
+                                      "local viscous solve (prefix -visc_, "
+                                      "solver.viscous_local_margin)",
+                                      "try solver.viscous_local_margin = 0");
   GF_PETSC(VecScatterBegin(loc_sct_, xloc_, u, INSERT_VALUES, SCATTER_REVERSE));
   GF_PETSC(VecScatterEnd(loc_sct_, xloc_, u, INSERT_VALUES, SCATTER_REVERSE));
-  return static_cast<int>(its);
+  return its;
 }
 
 void Predictor::end_local() {

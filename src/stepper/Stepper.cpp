@@ -247,10 +247,8 @@ void Stepper::set_plastic_region(const State& s) {
 }
 
 std::vector<PetscInt> Stepper::local_rows(const State& s, int margin) const {
-  const Box& b = g_.box();
-  Vec m, lm;
+  Vec m;
   GF_PETSC(DMGetGlobalVector(g_.dm_cell(), &m));
-  GF_PETSC(DMGetLocalVector(g_.dm_cell(), &lm));
   {
     const PetscScalar *k, *ph;
     PetscScalar* o;
@@ -259,47 +257,25 @@ std::vector<PetscInt> Stepper::local_rows(const State& s, int margin) const {
     GF_PETSC(VecGetArray(m, &o));
     PetscInt len;
     GF_PETSC(VecGetLocalSize(m, &len));
-    for (PetscInt c = 0; c < len; ++c) o[c] = (k[c] > 0 || ph[c] < 0) ? 1.0 : 0.0;
+    for (PetscInt c = 0; c < len; ++c) o[c] = (k[c] > 0 || ph[c] < 0) ? -1.0 : 0.0;
     GF_PETSC(VecRestoreArray(m, &o));
     GF_PETSC(VecRestoreArrayRead(s.phi, &ph));
     GF_PETSC(VecRestoreArrayRead(kappa_, &k));
   }
-  // Box dilation by margin cells, up to the ghost width per exchange.
-  for (int left = margin; left > 0;) {
-    const int w = std::min<int>(left, Grid::kGhost);
-    left -= w;
-    to_local(g_.dm_cell(), m, lm);
-    const PetscScalar** l;
-    PetscScalar** o;
-    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lm, &l));
-    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), m, &o));
-    for (PetscInt j = b.ys; j < b.ye(); ++j)
-      for (PetscInt i = b.xs; i < b.xe(); ++i) {
-        if (o[j][i] > 0) continue;
-        const PetscInt j0 = std::max<PetscInt>(j - w, 0), j1 = std::min<PetscInt>(j + w, b.ny - 1);
-        for (PetscInt jj = j0; jj <= j1; ++jj)
-          for (PetscInt ii = i - w; ii <= i + w; ++ii)
-            if (b.has_cell_x(ii) && l[jj][ii] > 0) {
-              o[j][i] = 1.0;
-              jj = b.ny;  // leave both loops
-              break;
-            }
-      }
-    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), m, &o));
-    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lm, &l));
-  }
+  // Box dilation by margin cells: the mask is -1 on the granular cells, and each pass takes the
+  // minimum over a cell and its 8 neighbours.
+  for (int pass = 0; pass < margin; ++pass) rheology::neighbourhood_min(g_, m, m);
   std::vector<PetscInt> rows;
   const PetscScalar* o;
   PetscInt len;
   GF_PETSC(VecGetLocalSize(m, &len));
   GF_PETSC(VecGetArrayRead(m, &o));
   for (PetscInt c = 0; c < len; ++c)
-    if (o[c] > 0) {  // the u and v rows of the cell: its left and bottom faces
+    if (o[c] < 0) {  // the u and v rows of the cell: its left and bottom faces
       rows.push_back(2 * c);
       rows.push_back(2 * c + 1);
     }
   GF_PETSC(VecRestoreArrayRead(m, &o));
-  GF_PETSC(DMRestoreLocalVector(g_.dm_cell(), &lm));
   GF_PETSC(DMRestoreGlobalVector(g_.dm_cell(), &m));
   return rows;
 }
