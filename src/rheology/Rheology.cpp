@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/Error.hpp"
+#include "levelset/Heaviside.hpp"
 
 namespace gf::rheology {
 
@@ -209,7 +210,24 @@ void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Ve
       if (ph[j][i] < pr.support) {
         switch (pr.yield) {
           case Yield::None: kv = 0; break;
-          case Yield::Bingham: kv = pr.tau_y; break;
+          case Yield::Bingham: {
+            // "mass" support: a constant yield stress scaled by the cell's granular volume
+            // fraction 1 - H_eps(phi) (eq. 25's weight), so that it goes to zero with the
+            // granular mass at phi = eps instead of jumping there. With the step, cells that are
+            // air to round-off (a block face 1.5 h from their centres) carried the full tau_y
+            // next to air faces 1000 times lighter, and switched it on and off row by row as phi
+            // moved by 1e-10 m: a holding Bingham block (cases/verify/coulomb_block.toml tilted
+            // to 15 deg) drove the air at its corners to 7e-3 m/s in one step and crept at
+            // 1e-5 m/s. Fractions below 1e-9 count as none (r ~ 1/kappa^2). The
+            // pressure-proportional yield stresses below need no weight: they vanish with the
+            // overburden at a free surface (for DP, down to tan(alpha) times the air's
+            // pressure), and the band's pressure carries its dilution; weighting them as well
+            // let a Drucker-Prager pile's toes slide (cases/verify/dp_pile.toml: 4.6e-4 m/s).
+            const double frac =
+                pr.support > 0 ? 1.0 - levelset::heaviside(ph[j][i], pr.support) : 1.0;
+            kv = frac > 1e-9 ? pr.tau_y * frac : 0.0;
+            break;
+          }
           case Yield::DruckerPrager: kv = pr.tan_alpha * std::max(pa[j][i], 0.0); break;
           case Yield::Hydrostatic: kv = pr.tan_alpha * std::max(ph_hyd[j][i], 0.0); break;
         }

@@ -34,7 +34,9 @@ struct Params {
   bool node_copy = false;
   // m: kappa (and the Coulomb wall friction) act where phi < support. 0: in the granular phase
   // phi < 0 (the paper); eps: also in the smeared band, wherever eq. 25 gives granular mass
-  // (rheology.yield_support = "mass").
+  // (rheology.yield_support = "mass"); there a Bingham tau_y is weighted by the granular volume
+  // fraction 1 - H_eps(phi) of eq. 25, so that it goes to zero with the granular mass instead
+  // of jumping at phi = eps (see yield_stress).
   double support = 0;
   double theta_per_dt = 10;  // 1/s: theta = theta_per_dt dt (section 4.1.3), capped at 0.5
   double fp_tol = 1e-6;    // stop when max |S_{k+1} - S_k| and |s_{k+1} - s_k| fall below

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "fields/Fields.hpp"
+#include "levelset/Heaviside.hpp"
 #include "rheology/Rheology.hpp"
 
 using namespace gf;
@@ -127,5 +128,41 @@ TEST(Rheology, YieldSupportPhaseOrMass) {
       }
     DMDAVecRestoreArrayRead(g.dm_cell(), k, &ka);
     EXPECT_EQ(g.max(err), 0.0) << "support " << support;
+  }
+}
+
+TEST(Rheology, BinghamMassSupportFollowsTheGranularFraction) {
+  // A Bingham tau_y with rheology.yield_support = "mass" on a layer phi = y - H whose surface
+  // lies 1.5 h = eps below a row of cell centres (a rectangle's face: that row is air to
+  // round-off): kappa = tau_y (1 - H_eps(phi)) in the band, tau_y below it, 0 from phi = eps on
+  // (and where the fraction is below 1e-9), whichever side of eps round-off puts the row.
+  Grid g(PETSC_COMM_WORLD, 8, 32, 0.1, 0.4);
+  Field phi(g.dm_cell(), "phi"), p(g.dm_cell(), "p"), k(g.dm_cell(), "kappa");
+  const Box& b = g.box();
+  const double eps = 1.5 * b.hy, H = b.yc(20) - eps, tau = 2000.0;
+  for (const double shift : {0.0, -1e-12, 1e-12}) {
+    PetscScalar** fa;
+    DMDAVecGetArray(g.dm_cell(), phi, &fa);
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) fa[j][i] = b.yc(j) - H + shift;
+    DMDAVecRestoreArray(g.dm_cell(), phi, &fa);
+    rheology::Params pr;
+    pr.yield = rheology::Yield::Bingham;
+    pr.tau_y = tau;
+    pr.support = eps;
+    rheology::yield_stress(g, pr, phi, p, nullptr, k);
+    const PetscScalar** ka;
+    DMDAVecGetArrayRead(g.dm_cell(), k, &ka);
+    double err = 0, at_eps = 0;
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        const double ph = b.yc(j) - H + shift;
+        const double exact = ph < -eps ? tau : tau * (1.0 - levelset::heaviside(ph, eps));
+        err = std::max(err, std::abs(ka[j][i] - exact));
+        if (j >= 20) at_eps = std::max(at_eps, std::abs(ka[j][i]));
+      }
+    DMDAVecRestoreArrayRead(g.dm_cell(), k, &ka);
+    EXPECT_LT(g.max(err), 1e-9 * tau) << "shift " << shift;
+    EXPECT_EQ(g.max(at_eps), 0.0) << "shift " << shift;  // no yield stress in the air row
   }
 }

@@ -14,13 +14,15 @@
 #  2. theta = 15 deg < alpha_b: the block holds (sliding without friction would reach
 #     g sin(theta) t = 0.25 m/s at 0.1 s). With the case file as it is, it creeps at up to 7e-4
 #     m/s (mean granular speed). Four settings, each needed (docs/RHEOLOGY.md, "Holding block"),
-#     bring that to the 1e-6 m/s level: rheology.yield_support = "mass" (the smeared band carries
-#     its own weight), levelset.redistance_every = 0 (the redistancing rounds the block's corners:
-#     -1 % of its volume in 0.3 s), initial.stress = "equilibrium" (it starts with its stresses,
-#     not from S = 0) and rheology.fp_tol = 1e-6 (a yield stress of 2000 Pa converged to 1e-4 of
+#     bring that to the 1e-8 m/s level: rheology.yield_support = "mass" (the smeared band carries
+#     its own weight, tau_y weighted by its granular fraction), levelset.redistance_every = 0 (the
+#     redistancing rounds the block's corners: -0.75 % of its volume in 0.1 s),
+#     initial.stress = "equilibrium" (it starts with its stresses, not from S = 0), and
+#     rheology.fp_tol = initial.stress_tol = 1e-9 (a yield stress of 2000 Pa converged to 1e-4 of
 #     itself leaves 0.2 Pa of unbalanced stress). Required with them: the pseudo-steps reach
-#     initial.stress_tol, and over 0.1 s the mean granular speed stays below 1e-5 m/s (measured
-#     2.4e-6) and the largest granular speed (cells with phi < -eps) below 1e-4 m/s (1.5e-5).
+#     initial.stress_tol, and over 0.1 s the mean granular speed stays below 1e-8 m/s (measured
+#     3.9e-10), the largest granular speed (cells with phi < -eps) below 1e-7 m/s (1.1e-8) and
+#     the volume change below 1e-5 % (7e-8 %).
 # Usage: bash test_coulomb_block.sh <granflow binary> <source dir>
 set -euo pipefail
 bin="$1"; src="$2"
@@ -61,7 +63,8 @@ sys.exit(0 if ok else 1)
 PY
 "$bin" run "$case_file" --set "physics.gravity=[2.539024, -9.475746]" --set time.t_end=0.1 \
   --set output.interval=0.01 --set rheology.yield_support=mass --set levelset.redistance_every=0 \
-  --set initial.stress=equilibrium --set rheology.fp_tol=1e-6 --set rheology.fp_max_iter=300 \
+  --set initial.stress=equilibrium --set initial.stress_tol=1e-9 --set rheology.fp_tol=1e-9 \
+  --set rheology.fp_max_iter=1000 \
   --out "$tmp/hold" > "$tmp/loghold" 2>&1 || { cat "$tmp/loghold"; echo "FAIL: run hold"; exit 1; }
 /usr/bin/python3 - "$tmp/hold" <<'PY'
 import csv, json, math, sys
@@ -70,8 +73,9 @@ summ = json.load(open(sys.argv[1] + "/summary.json"))
 mean = max(math.hypot(float(r["granular_u"]), float(r["granular_v"])) for r in rows)
 peak = max(float(r["max_speed_granular"]) for r in rows)
 v0 = summ.get("initial_stress_speed_mps", 1.0)
+dv = max(abs(float(r["volume_change_pct"])) for r in rows)
 print(f"holding block (theta = 15 deg < alpha_b = 20 deg): {summ.get('initial_stress_steps')} "
       f"pseudo-steps (last {v0:.2e} m/s); max mean granular speed {mean:.3e} m/s, "
-      f"max granular speed {peak:.3e} m/s")
-sys.exit(0 if (v0 < 1e-7 and mean < 1e-5 and peak < 1e-4) else 1)
+      f"max granular speed {peak:.3e} m/s, volume change {dv:.1e} %")
+sys.exit(0 if (v0 < 1e-9 and mean < 1e-8 and peak < 1e-7 and dv < 1e-5) else 1)
 PY
