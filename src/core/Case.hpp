@@ -61,6 +61,7 @@ struct CaseConfig {
     double eps_cells = 0;      // smearing half-width of H_eps, in cells (eps = eps_cells h)
     int redistance_every = 0;  // steps; 0 = never
     double redistance_tol = 0;  // -, redistance only above this distance defect (0: always)
+    double redistance_interval = 0;  // s; > 0: redistance by simulated time, not by steps
     bool redistance_wall_extrapolate = false;  // levelset.redistance_wall = "extrapolate"
     int redistance_iters = 0;
     double redistance_cfl = 0;  // pseudo-time CFL

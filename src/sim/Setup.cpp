@@ -22,6 +22,7 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.redistance_iters = c.levelset.redistance_iters;
   p.redistance_cfl = c.levelset.redistance_cfl;
   p.redistance_tol = c.levelset.redistance_tol;
+  p.redistance_interval = c.levelset.redistance_interval;
   p.redistance_wall_extrapolate = c.levelset.redistance_wall_extrapolate;
   auto wall = [&](CaseConfig::Side s) {
     const auto& w = c.walls[s];

@@ -116,6 +116,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("loop.visc_its_total", lp_.visc_its_total);
   h.set("loop.visc_polish_its_total", lp_.visc_polish_its_total);
   h.set("loop.visc_polish_steps", lp_.visc_polish_steps);
+  h.set("loop.redistancings", lp_.redistancings);
   h.set("loop.stress_steps", lp_.stress_steps);
   h.set("loop.stress_speed", lp_.stress_speed);
   if (collapse_) collapse_->save(h);
@@ -195,6 +196,7 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
       h.has("loop.visc_polish_its_total") ? h.get_int("loop.visc_polish_its_total") : 0;
   lp_.visc_polish_steps =
       h.has("loop.visc_polish_steps") ? h.get_int("loop.visc_polish_steps") : 0;
+  lp_.redistancings = h.has("loop.redistancings") ? h.get_int("loop.redistancings") : 0;
   lp_.stress_steps = h.has("loop.stress_steps") ? h.get_int("loop.stress_steps") : -1;
   lp_.stress_speed = h.has("loop.stress_speed") ? h.get_double("loop.stress_speed") : -1;
   StepStats& l = lp_.last;
@@ -380,6 +382,7 @@ RunSummary Simulation::run() {
         .set("visc_its_total", lp_.visc_its_total)
         .set("visc_polish_its_total", lp_.visc_polish_its_total)
         .set("visc_polish_steps", lp_.visc_polish_steps)
+        .set("redistancings", lp_.redistancings)
         .set("warnings_fp_capped_steps", lp_.fp_capped_steps)
         .set("fp_capped_max_change", lp_.fp_capped_change)
         .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
@@ -527,6 +530,7 @@ RunSummary Simulation::run() {
     lp_.visc_its_total += last.visc_its;
     lp_.visc_polish_its_total += last.visc_polish_its;
     if (last.visc_polish_its > 0) ++lp_.visc_polish_steps;
+    if (last.redistanced) ++lp_.redistancings;
     lp_.dt_prev = dt;
 
     // 1. Failure detection: a non-finite value in any prognostic field, or a speed no flow of

@@ -103,6 +103,7 @@ class Simulation {
     // solver.viscous_local_margin: iterations of the closing full solves (included in
     // visc_its_total), and the steps where it took any: what the local solves missed.
     long long visc_polish_its_total = 0, visc_polish_steps = 0;
+    long long redistancings = 0;     // steps that redistanced phi
     StepStats last;                  // the last step's statistics (diagnostics columns)
     // initial.stress = "equilibrium": pseudo-steps taken, the velocity the last one made (m/s);
     // -1: not asked for.

@@ -392,6 +392,19 @@ std::pair<int, double> Stepper::equilibrate(State& s, double dt, int max_steps, 
   return {std::min(k, max_steps), speed};
 }
 
+bool Stepper::redistance_due(const State& s, double dt) const {
+  if (cfg_.redistance_interval > 0) {
+    // The step from t to t + dt redistances if it reaches the next multiple of the interval
+    // (k I with t < k I <= t + dt; the relative slack absorbs the round-off of summed dts, so a
+    // dt that divides the interval gives every (interval / dt)-th step, like redistance_every).
+    const double slack = 1e-9 * cfg_.redistance_interval;
+    const auto k_before = std::floor((s.t + slack) / cfg_.redistance_interval);
+    const auto k_after = std::floor((s.t + dt + slack) / cfg_.redistance_interval);
+    return k_after > k_before;
+  }
+  return cfg_.redistance_every > 0 && (s.step + 1) % cfg_.redistance_every == 0;
+}
+
 StepStats Stepper::step(State& s, double dt) {
   StepStats st;
   const bool first = (s.step == 0);
@@ -402,7 +415,7 @@ StepStats Stepper::step(State& s, double dt) {
       prof::Scope ps(prof::Advect);
       advector_->step(s.phi, s.vel, dt);
     }
-    if (cfg_.redistance_every > 0 && (s.step + 1) % cfg_.redistance_every == 0) {
+    if (redistance_due(s, dt)) {
       prof::Scope ps(prof::Redistance);
       // levelset.redistance_tol: only when transport has made phi drift from a distance. Each
       // redistancing moves the zero level a little (most where it meets a wall at a shallow

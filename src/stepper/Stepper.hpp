@@ -1,6 +1,6 @@
 #pragma once
 // One time step of the two-phase model, in the order of the paper (sections 3.1-3.3):
-//   1. phi^{n+1} from eq. 26 with the solenoidal u^n (WENO5 + TVD-RK3), redistanced every N steps;
+//   1. phi^{n+1} from eq. 26 with the solenoidal u^n (WENO5 + TVD-RK3), redistanced every N steps (or every T seconds);
 //   2. rho^{n+1}, eta^{n+1} from phi^{n+1} (eq. 25, harmonic mean with the height fraction);
 //   3. prediction (eq. 31): explicit terms, then the implicit viscous solve for u~
 //      (the fixed point with the plastic stress S plugs in here: it only changes the rhs);
@@ -40,6 +40,8 @@ struct PhysicsConfig {
   double eps = 0;             // m, half-width of the smeared Heaviside (eq. 25)
   int redistance_every = 5;   // steps, 0 = never
   double redistance_tol = 0;  // > 0: only when max | |grad phi| - 1 | near phi = 0 exceeds it
+  double redistance_interval = 0;  // s; > 0: in the step reaching each multiple of it (not by
+                                   // redistance_every)
   bool redistance_wall_extrapolate = false;  // levelset.redistance_wall = "extrapolate"
   int redistance_iters = 10;
   double redistance_cfl = 0.5;
@@ -81,6 +83,9 @@ class Stepper {
   void resume(State& s);
   // Advances s from t^n to t^n + dt.
   StepStats step(State& s, double dt);
+  // Whether the step from s.t of length dt redistances phi: every redistance_every steps, or,
+  // with redistance_interval > 0, in the step that reaches each multiple of the interval.
+  bool redistance_due(const State& s, double dt) const;
   // initial.stress = "equilibrium", after initialize(): pseudo-steps of length dt from rest,
   // each one's velocity discarded (phi, t and the step count put back) and its S, s_t and p
   // kept, until speed(s) after a step (the granular speed: the air, whose density varies across
