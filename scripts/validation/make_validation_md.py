@@ -402,6 +402,19 @@ def collapse_figures(run, figs_dir, names):
     return out
 
 
+def dt_label(r):
+    """The time-step cap of a run and how often it redistanced, from its resolved case.toml."""
+    try:
+        with open(os.path.join(r.dir, "case.toml"), "rb") as f:
+            c = tomllib.load(f)
+        dtm, ls = c["time"]["dt_max"], c["levelset"]
+        every = (f"every {ls['redistance_interval']:g} s" if ls.get("redistance_interval", 0) > 0
+                 else f"every {ls['redistance_every']} steps")
+        return f"≤ {dtm:g} s, redistanced {every}"
+    except (OSError, KeyError, tomllib.TOMLDecodeError):
+        return "?"
+
+
 def img(rel_path, alt):
     return f"![{alt}]({rel_path})"
 
@@ -655,10 +668,11 @@ def main():
     L += ["### HP model, case A (paper: n = 128, runout 24 % short of the experiment)", ""]
     hpA = [R[k] for k in ("a_hp_n64", "a_hp_n128")]
     rows = []
-    for r in hpA:
+    for r in hpA + [R[k] for k in ("a_hp_n64_dt1e-3", "a_hp_n128_dt1e-3")]:
         if r.ok:
             b = nose(r)
-            rows.append([r.name, r.grid, cell(r.v("runout_m"), A_RUNOUT_EXP * (1 - A_HP_DEFICIT),
+            rows.append([r.name, r.grid, dt_label(r),
+                         cell(r.v("runout_m"), A_RUNOUT_EXP * (1 - A_HP_DEFICIT),
                                                A_RUNOUT_EXP),
                          cell(r.v("max_front_x_m"), A_RUNOUT_EXP * (1 - A_HP_DEFICIT), A_RUNOUT_EXP),
                          cell(r.v("backwall_height_m"), A_BACKWALL, None, 4), f3(r.v("tf_s")),
@@ -666,10 +680,14 @@ def main():
                          f"{1000 * b[0]:.1f} mm ({b[0] / b[3]:.1f} cells) at t = {b[1]:.2f} s, "
                          f"tip at y = {b[2]:.3f} m" if b else "–"])
         else:
-            rows.append([r.name, r.status, r.make_cmd(), "", "", "", "", ""])
+            rows.append([r.name, r.status, r.make_cmd(), "", "", "", "", "", ""])
     bdp = nose(R["a_n64"]) if R["a_n64"].ok else None
-    L += [table(["run", "grid", "runout (m)", "furthest front (m)", "back wall (m)", "t_f (s)",
-                 "max p ratio", "nose: overhang beyond the foot, 0.1 ≤ t ≤ 0.5 s"], rows), "",
+    L += [table(["run", "grid", "dt", "runout (m)", "furthest front (m)", "back wall (m)",
+                 "t_f (s)", "max p ratio", "nose: overhang beyond the foot, 0.1 ≤ t ≤ 0.5 s"],
+                rows), "",
+          "The HP case files take the paper's dt = 1e-4 s; the `_dt1e-3` runs are the same with "
+          "the DP files' cap of 1e-3 s (as made before 2026-11-30), see [Time step]"
+          "(#time-step-the-papers-dt--1e-4-s). "
           "The paper's value in the runout column is 0.475 × (1 − 0.24) = 0.361 m. The *nose* "
           "column measures the bump at the upper right corner of the column that rolls up and "
           "falls (section 4.1.5): how far the interface overhangs its foot on the bottom, the "
@@ -852,7 +870,12 @@ def main():
     rows = []
     dt_runs = [("b_n64_w15", "B"), ("b_n64_dt2.5e-4", "B"), ("b_n64_dt1e-4", "B"),
                ("b_n64_dt1e-4_r15", "B"), ("b_n64_dt1e-4_r5", "B"), ("a_n128", "A"),
-               ("a_n128_dt1e-4", "A")]
+               ("a_n128_dt1e-4", "A"), ("a_hp_n64_dt1e-3", "A HP"), ("a_hp_n64", "A HP"),
+               ("a_hp_n128_dt1e-3", "A HP"), ("a_hp_n128", "A HP"), ("b_hp_n32_dt1e-3", "B HP"),
+               ("b_hp_n32", "B HP"), ("b_hp_n64_dt1e-3", "B HP"), ("b_hp_n64", "B HP")]
+    ref_of = {"A": (A_RUNOUT_PAPER, A_RUNOUT_EXP), "B": (B_RUNOUT_PAPER[15.0], B_RUNOUT_EXP),
+              "A HP": (A_RUNOUT_EXP * (1 - A_HP_DEFICIT), A_RUNOUT_EXP),
+              "B HP": (B_RUNOUT_EXP * (1 - B_HP_DEFICIT), B_RUNOUT_EXP)}
     for name, case in dt_runs:
         r = R[name]
         if not r.ok:
@@ -860,11 +883,12 @@ def main():
             continue
         dtm = case_value(r, "time", "dt_max")
         every = case_value(r, "levelset", "redistance_every")
-        ref = (B_RUNOUT_PAPER[15.0], B_RUNOUT_EXP) if case == "B" else (A_RUNOUT_PAPER, A_RUNOUT_EXP)
+        interval = case_value(r, "levelset", "redistance_interval")
+        ref = ref_of[case]
         slopes = (f"{r.v('slope_back_deg'):.1f}° / {r.v('slope_front_deg'):.1f}°"
                   if case == "B" else "–")
         rows.append([f"`{name}`", f"{case}, {r.grid}", f"{dtm:g} ({r.s.get('steps')} steps)",
-                     f"{every} steps = {every * dtm:g} s",
+                     f"every {interval:g} s" if interval > 0 else f"{every} steps = {every * dtm:g} s",
                      cell(r.v("runout_m"), *ref, nd=4), slopes, f"{r.v('front_angle_deg'):.1f}",
                      f"{r.v('volume_change_pct'):.2f}", f3(r.v("max_p_granular_ratio")),
                      mins(r.v("wall_s")) + on_ranks(r)])
@@ -899,6 +923,22 @@ def main():
               f"volume change {a1.v('volume_change_pct'):.2f} → {a2.v('volume_change_pct'):.2f} %"
               + (": the paper's time step does not bring the peak pressure under ρ_s g H_c."
                  if a2.v("max_p_granular_ratio") > 1 else "."), ""]
+    hp_pairs = [(R[f"{c}_hp_n{n}_dt1e-3"], R[f"{c}_hp_n{n}"], c.upper(), n)
+                for c, n in (("a", 64), ("a", 128), ("b", 32), ("b", 64))]
+    hp_txt = [f"{c} at n = {n}: {o.v('runout_m'):.3f} → {w.v('runout_m'):.3f} m "
+              f"({pct(rel(w.v('runout_m'), o.v('runout_m')))})" for o, w, c, n in hp_pairs
+              if o.ok and w.ok]
+    if hp_txt:
+        L += ["The HP model is another matter: from the cap of 1e-3 s to the paper's 1e-4 s its "
+              "runout moves by " + "; ".join(hp_txt) + ". Its yield stress makes most of the "
+              "column rigid, and a rigid zone of the relaxed fixed point of eq. 31 still deforms, "
+              "r κ D(ũ) = θ (S − Sⁿ): a strain per unit of stress change θ dt / (r κ²) ~ "
+              "10 dt³ / (ρ h²), a thousand times larger at 1e-3 s. That is probably the cause: "
+              "θ alone, ten times larger at dt = 1e-4 s, leaves HP case A at n = 32 where it was "
+              "(runout 0.3303 m with `rheology.theta_per_dt` 10 and 100: `granflow run "
+              "cases/ar07_rough_hp.toml --set grid.n=32 --set levelset.redistance_interval=0 "
+              "--set rheology.theta_per_dt=100`, measured 2026-11-30, not kept in runs/). So the "
+              "HP case files take the paper's dt = 1e-4 s, redistancing every 5e-3 s.", ""]
 
     # Slopes, structure, L_h linearity at the finest case B run.
     fineB = doneB[-1] if doneB else None
@@ -967,27 +1007,32 @@ def main():
 
     # HP case B.
     L += ["### HP model, case B (domain 4 × 0.5, walls 19°; paper: n = 128, runout ≈ 50 % short)", ""]
-    hpB = [R[k] for k in ("b_hp_n32", "b_hp_n64", "b_hp_n64_gmres", "b_hp_n128")]
+    hpB = [R[k] for k in ("b_hp_n32", "b_hp_n64", "b_hp_n128")]
+    hpB_old = [R[k] for k in ("b_hp_n32_dt1e-3", "b_hp_n64_dt1e-3", "b_hp_n64_gmres_dt1e-3",
+                              "b_hp_n128_dt1e-3")]
     rows = []
-    for r in hpB:
+    for r in hpB + hpB_old:
         if r.ok:
-            rows.append([r.name, r.grid, cell(r.v("runout_m"), B_RUNOUT_EXP * (1 - B_HP_DEFICIT),
+            rows.append([r.name, r.grid, dt_label(r),
+                         cell(r.v("runout_m"), B_RUNOUT_EXP * (1 - B_HP_DEFICIT),
                                                B_RUNOUT_EXP),
                          cell(r.v("max_front_x_m"), B_RUNOUT_EXP * (1 - B_HP_DEFICIT), B_RUNOUT_EXP),
                          f"{r.v('backwall_height_m'):.4f}", cell(r.v("tf_s"), B_HP_TF),
                          f"{r.v('max_p_granular_ratio'):.3f}", f"{r.v('volume_change_pct'):+.2f}",
                          mins(r.v("wall_s")) + on_ranks(r)])
         else:
-            rows.append([r.name, r.status, r.make_cmd(), "", "", "", "", "", ""])
-    L += [table(["run", "grid", "runout (m)", "furthest front (m)", "back wall (m)", "t_f (s)",
-                 "max p ratio", "volume change (%)", "wall time"], rows), "",
+            rows.append([r.name, r.status, r.make_cmd(), "", "", "", "", "", "", ""])
+    L += [table(["run", "grid", "dt", "runout (m)", "furthest front (m)", "back wall (m)",
+                 "t_f (s)", "max p ratio", "volume change (%)", "wall time"], rows), "",
+          "The HP case files take the paper's dt = 1e-4 s; the `_dt1e-3` runs are the same with "
+          "the DP files' cap of 1e-3 s (as made before 2026-11-30).",
           "The paper's value in the runout column is 1.213 × 0.5 = 0.607 m; its t_f is 1.98 s "
           "(experiment 1.36 s). The case file assumes η₀ = 0.1 (the paper does not restate it). "
-          "`b_hp_n64_gmres` is `b_hp_n64` with the pressure solve's CG replaced by GMRES "
+          "`b_hp_n64_gmres_dt1e-3` is `b_hp_n64_dt1e-3` with the pressure solve's CG replaced by GMRES "
           "(`PETSC_OPTIONS='-pres_ksp_type gmres'`), same physics: CG needs a symmetric positive "
           "definite preconditioner, and BoomerAMG's default (non-symmetric) smoother is not "
           "always one.", ""]
-    for r in hpB:
+    for r in hpB + hpB_old:
         if r.exists and not r.ok:
             L += [f"**`{r.name}` failed** at t = {r.v('t_end'):.3f} s: "
                   f"{r.s.get('message', '?')} (the suggested `-pres_pc_type hypre` is already the "
