@@ -440,7 +440,7 @@ def main():
     versions = sorted({r.s.get("version", "?") for r in R.values() if r.ok})
     L += ["# Validation: granflow against Chupin, Dubois, Phan & Roche 2021 (section 4)", "",
           "Generated, do not edit by hand. The runs are made by", "",
-          f"    {RUN_CMD}              # default tier (~30 min on one core)",
+          f"    {RUN_CMD}              # default tier (~35 min on one core)",
           f"    TIER=full {RUN_CMD}    # + the long runs (n = 128, 256; hours to days)", "",
           "(`A128_DIR=/path/to/run` lets an existing case A n = 128 output folder stand for "
           "`a_n128`), and this document and its figures by", "", f"    {GEN_CMD}", "",

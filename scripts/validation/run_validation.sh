@@ -4,7 +4,7 @@
 # on one rank. Then `scripts/validation/make_validation_md.py` writes docs/VALIDATION.md from
 # whatever runs exist.
 #
-#   scripts/validation/run_validation.sh            # default tier (~30 min on one free core)
+#   scripts/validation/run_validation.sh            # default tier (~35 min on one free core)
 #   TIER=full scripts/validation/run_validation.sh  # + the long runs (hours to days, see below)
 #   ONLY="a_n64 b_n32_w15" scripts/validation/run_validation.sh   # just these runs
 #   LIST=1 scripts/validation/run_validation.sh     # print the runs, their commands and times
