@@ -234,8 +234,9 @@ Params case_params() {
              "gives runout 1.236 m redistanced every 5e-3 s and 0.970 m every 5 steps "
              "(docs/VALIDATION.md, time step). 0 = count steps.");
   p.add_real("levelset.redistance_tol", "", 0.0, Range::ge(0),
-             "Redistance (every redistance_every steps) only if phi has drifted from a signed "
-             "distance near the interface: max | |grad phi| - 1 | over |phi| < 3h above this. "
+             "Redistance (when redistance_every or redistance_interval says so) only if phi has "
+             "drifted from a signed distance near the interface: max | |grad phi| - 1 | over "
+             "|phi| < 3h above this. "
              "0 = always. Each redistancing moves the zero level slightly, most where it meets a "
              "wall at a shallow angle; with a tolerance a deposit at rest is left alone.");
   p.add_enum("levelset.redistance_wall", "drop", kRedistanceWalls,
