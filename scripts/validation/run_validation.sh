@@ -66,7 +66,7 @@ RUNS=(
   "b_n128_w15|full|5-7 min|$B|--set grid.n=128"
   "b_n128_w12.5|full|5-7 min|$B|--set grid.n=128 $(wall 12.5)"
   "b_n128_w17.5|full|5-7 min|$B|--set grid.n=128 $(wall 17.5)"
-  "b_hp_n128|full|about 2 h|$BHP|--set grid.n=128"
+  "b_hp_n128|full|2 h|$BHP|--set grid.n=128"
   "a_hp_n64_it300|full|5.5 min|$AHP|--set grid.n=64 --set rheology.fp_max_iter=300 --set output.vtk_interval=0"
   "a_hp_n64_dt1e-3|full|1 min|$AHP|--set grid.n=64 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
   "a_hp_n128_dt1e-3|full|6 min|$AHP|--set grid.n=128 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
