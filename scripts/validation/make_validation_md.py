@@ -402,6 +402,28 @@ def collapse_figures(run, figs_dir, names):
     return out
 
 
+def local_slope(r, a, b):
+    """Slope (deg, positive downhill) of the least-squares line through the final surface height
+    h(x) > 0 over a <= x <= b."""
+    try:
+        x, h = r.final_profile()
+    except (KeyError, ValueError):
+        return float("nan")
+    m = (x >= a) & (x <= b) & (h > 0)
+    if m.sum() < 3:
+        return float("nan")
+    return math.degrees(math.atan(-np.polyfit(x[m], h[m], 1)[0]))
+
+
+def min_area_two_slopes(front, back_deg=29.0, x_back=0.35, front_deg=7.0, x_front=0.5):
+    """Least area (m^2) under a non-increasing surface that falls at back_deg over [0, x_back] and
+    at front_deg over [x_front, front] to h(front) = 0: the paper's two slopes read as lines."""
+    tb, tf = math.tan(math.radians(back_deg)), math.tan(math.radians(front_deg))
+    h_front = (front - x_front) * tf          # height at x_front, the least it can be at x_back
+    return (x_back * h_front + 0.5 * x_back ** 2 * tb + (x_front - x_back) * h_front
+            + 0.5 * (front - x_front) ** 2 * tf)
+
+
 def dt_label(r):
     """The time-step cap of a run and how often it redistanced, from its resolved case.toml."""
     try:
@@ -966,10 +988,16 @@ def main():
                      ("fail (furthest front passes)" if abs(rel(mf, B_RUNOUT_PAPER[15.0])) <= 5
                       else "fail"), note))
         sb, sf = r.v("slope_back_deg"), r.v("slope_front_deg")
+        lb, lf = local_slope(r, 0.0, 0.2), local_slope(r, 0.5, 0.7)
         crit.append(("B: slopes near 29° (x ≤ 0.35) and 7° (x ≥ 0.5), within 2°",
-                     f"{sb:.1f}° and {sf:.1f}°",
-                     "pass" if abs(sb - 29) <= 2 and abs(sf - 7) <= 2 else "fail",
-                     (note + "; " if note else "") + "the 2° tolerance is this report's"))
+                     f"{sb:.1f}° and {sf:.1f}° (fits over x ≤ 0.35 and x ≥ 0.5 to the front); "
+                     f"{lb:.1f}° and {lf:.1f}° (fits over [0, 0.2] and [0.5, 0.7] m)",
+                     "pass" if abs(sb - 29) <= 2 and abs(sf - 7) <= 2 else
+                     ("fail (local fits: front slope passes)" if abs(lf - 7) <= 2 and
+                      abs(lb - 29) > 2 else "fail"),
+                     (note + "; " if note else "") + "the 2° tolerance is this report's; "
+                     "straight lines at 29° and 7° over the paper's ranges hold more than the "
+                     "column's area, see Known disagreements"))
         fits = lh_fit(r)
         if fits:
             rows = [[f"{100 * c:g} %", f"{f['Lh_max']:.3f} m at t = {f['t_peak']:.2f} s",
@@ -1197,9 +1225,23 @@ def main():
           "- **Slopes of case B.** " + ("; ".join(
               f"n = {n}: {r.v('slope_back_deg'):.1f}° and {r.v('slope_front_deg'):.1f}°"
               for r, n in doneB) if doneB else "not run") +
-          " against the paper's 29° (x ≤ 0.35 m) and 7° (x ≥ 0.5 m): the deposit is flatter than "
-          "the paper's both near the back wall and in the far field, with a runout close to the "
-          "paper's. The cause is not identified; the trend with n is listed in the table. The "
+          " against the paper's 29° (x ≤ 0.35 m) and 7° (x ≥ 0.5 m), fitted as straight lines "
+          "over those ranges (to the front). Read that way the paper's figures cannot hold: a "
+          "non-increasing surface at 29° over [0, 0.35] m and 7° from 0.5 m to a front at "
+          f"1.145 m holds at least {min_area_two_slopes(1.145):.3f} m² "
+          f"({min_area_two_slopes(1.213):.3f} m² to the experiment's 1.213 m), more than the "
+          "column's 0.2 × 0.4 = 0.080 m². The paper describes the experimental deposit "
+          "(\"clearly has two slopes\", section 4.2.2): its 7° can describe the surface near "
+          "x = 0.5 m, not a line to the front. Local fits of the final surface: " + ("; ".join(
+              f"n = {n}: {local_slope(r, 0.0, 0.2):.1f}° over [0, 0.2] m and "
+              f"{local_slope(r, 0.5, 0.7):.1f}° over [0.5, 0.7] m" for r, n in doneB)
+              if doneB else "not run")
+          + (f": the far-field slope then comes within "
+             f"{max(abs(local_slope(r, 0.5, 0.7) - 7) for r, _ in doneB):.1f}° of 7°, the back "
+             f"slope stays {min(29 - local_slope(r, 0.0, 0.2) for r, _ in doneB):.1f}-"
+             f"{max(29 - local_slope(r, 0.0, 0.2) for r, _ in doneB):.1f}° below 29° (the "
+             "internal friction angle is 27°)" if doneB else "") +
+          ". That part, and the runout, are not explained. The "
           "angle at the front is fitted over the last 2 cm, i.e. 1.4–3 cells at n ≤ 64 (not "
           "resolved; NaN where there are too few cells) and 5.6 / 11 cells at n = 128 / 256.",
           "- **Resolution.** The finest runs here against the paper's grids: case A "
