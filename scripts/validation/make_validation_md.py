@@ -424,17 +424,25 @@ def min_area_two_slopes(front, back_deg=29.0, x_back=0.35, front_deg=7.0, x_fron
             + 0.5 * (front - x_front) ** 2 * tf)
 
 
-def dt_label(r):
-    """The time-step cap of a run and how often it redistanced, from its resolved case.toml."""
+def case_value(r, section, key, default=float("nan")):
+    """A value of a run's resolved case.toml (every key with the value used); default if the
+    file or the key is missing (runs made before the key existed)."""
     try:
         with open(os.path.join(r.dir, "case.toml"), "rb") as f:
-            c = tomllib.load(f)
-        dtm, ls = c["time"]["dt_max"], c["levelset"]
-        every = (f"every {ls['redistance_interval']:g} s" if ls.get("redistance_interval", 0) > 0
-                 else f"every {ls['redistance_every']} steps")
-        return f"≤ {dtm:g} s, redistanced {every}"
+            return tomllib.load(f)[section][key]
     except (OSError, KeyError, tomllib.TOMLDecodeError):
+        return default
+
+
+def dt_label(r):
+    """The time-step cap of a run and how often it redistanced, from its resolved case.toml."""
+    dtm = case_value(r, "time", "dt_max", None)
+    if dtm is None:
         return "?"
+    interval = case_value(r, "levelset", "redistance_interval", 0)
+    every = (f"every {interval:g} s" if interval > 0 else
+             f"every {case_value(r, 'levelset', 'redistance_every', '?')} steps")
+    return f"≤ {dtm:g} s, redistanced {every}"
 
 
 def img(rel_path, alt):
@@ -881,13 +889,6 @@ def main():
           "its frequency: these runs keep its interval in seconds (every 50 steps of 1e-4 s), "
           "`b_n64_dt1e-4_r5` keeps it in steps instead, so it redistances ten times as often, "
           "and `b_n64_dt1e-4_r15` lies between.", ""]
-
-    def case_value(r, section, key):
-        try:
-            with open(os.path.join(r.dir, "case.toml"), "rb") as f:
-                return tomllib.load(f)[section][key]
-        except (OSError, KeyError, tomllib.TOMLDecodeError):
-            return float("nan")
 
     rows = []
     dt_runs = [("b_n64_w15", "B"), ("b_n64_dt2.5e-4", "B"), ("b_n64_dt1e-4", "B"),

@@ -1,6 +1,7 @@
 #pragma once
 // One time step of the two-phase model, in the order of the paper (sections 3.1-3.3):
-//   1. phi^{n+1} from eq. 26 with the solenoidal u^n (WENO5 + TVD-RK3), redistanced every N steps (or every T seconds);
+//   1. phi^{n+1} from eq. 26 with the solenoidal u^n (WENO5 + TVD-RK3), redistanced every N steps
+//      (or every T seconds of simulated time);
 //   2. rho^{n+1}, eta^{n+1} from phi^{n+1} (eq. 25, harmonic mean with the height fraction);
 //   3. prediction (eq. 31): explicit terms, then the implicit viscous solve for u~
 //      (the fixed point with the plastic stress S plugs in here: it only changes the rhs);
