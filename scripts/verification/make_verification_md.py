@@ -414,6 +414,11 @@ RHEO_TESTS = [
      "(c): a Bingham block under gravity tilted 30° slides at g (sin θ − tan α_b cos θ) within "
      "2 % at n = 60 (error falling from n = 30); tilted 15° < α_b = 20° it holds (the settings "
      "it needs are in the test's header and `docs/RHEOLOGY.md`)."),
+    ("dp_slide", "Drucker–Prager layer sliding on a Coulomb wall",
+     "(c) with the paper's pressure-proportional yield stress: a granular layer under air, "
+     "gravity tilted 20° > α_b = 15°, slides as a plug at g (sin θ − tan α_b cos θ) within 1 % "
+     "at n = 16 and 32, its wall load equal to its weight and its friction tan α_b times that; "
+     "tilted 10° it holds (`cases/verify/dp_slide.toml`)."),
     ("bingham_cessation", "Cessation of a Bingham flow",
      "a vortex in a no-slip box left to itself stops in finite time: kinetic energy below 1e-14 "
      "of its start (with `rheology.plastic_grid = \"cell_node\"`; the paper's cell-only S is "

@@ -75,7 +75,7 @@ run plot_dambreak_n96 "$PY" scripts/plot_run.py "$OUT/dambreak_n96"
 #    each against its exact answer; their printed figures go into the document. A test that
 #    fails is recorded (status.csv) and written up as failed, not hidden by stopping here.
 echo "test,status" > "$OUT/status.csv"
-for t in bingham_poiseuille dp_incline bagnold coulomb_block bingham_cessation dp_pile \
+for t in bingham_poiseuille dp_incline bagnold coulomb_block dp_slide bingham_cessation dp_pile \
          initial_pressure; do
   st=0
   ( run "rheo_$t" bash "tests/verification/test_$t.sh" "$G" "$ROOT" ) || st=$?
