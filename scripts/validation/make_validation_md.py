@@ -424,6 +424,62 @@ def min_area_two_slopes(front, back_deg=29.0, x_back=0.35, front_deg=7.0, x_fron
             + 0.5 * (front - x_front) ** 2 * tf)
 
 
+def momentum_budget(r, rho=1450.0):
+    """Horizontal momentum of the granular mass against the wall forces, from diagnostics.csv:
+    M dU/dt = -F_bottom + N_left (U = granular_u, M = rho V; bottom_friction_N is signed along
+    +x and acts on the grains with the opposite sign; the back wall pushes with its normal load;
+    the air's forces are left out). Returns None, or a dict: the residual's RMS and max over
+    t >= 0.05 s against the mean |F_bottom|, and the forces, deceleration and front over the
+    deceleration phase [0.6, 0.8] s."""
+    d = r.diag
+    need = ("t", "granular_u", "granular_volume", "bottom_friction_N", "left_normal_N", "front_x")
+    if not all(k in d for k in need) or len(d["t"]) < 5:
+        return None
+    t, U = d["t"], d["granular_u"]
+    M = rho * d["granular_volume"]
+    lhs = np.gradient(M * U, t)
+    rhs = -d["bottom_friction_N"] + d["left_normal_N"]
+    m = t >= 0.05
+    res = lhs[m] - rhs[m]
+    fb = np.abs(d["bottom_friction_N"][m]).mean()
+    w = (t >= 0.6 - 1e-9) & (t <= 0.8 + 1e-9)
+    i8 = int(np.argmin(np.abs(t - 0.8)))
+    v_front = np.gradient(d["front_x"], t)
+    return {"rms": float(np.sqrt((res ** 2).mean())), "max": float(np.abs(res).max()),
+            "fb_mean": float(fb), "fb": float(d["bottom_friction_N"][w].mean()),
+            "nl": float(d["left_normal_N"][w].mean()), "M": float(M[w].mean()),
+            "decel": float(-np.polyfit(t[w], U[w], 1)[0]) if w.sum() >= 3 else float("nan"),
+            "front_08": float(d["front_x"][i8]), "vfront_08": float(v_front[i8]),
+            "t_pass": float(t[np.argmax(d["front_x"] >= 1.145)])
+            if (d["front_x"] >= 1.145).any() else float("nan")}
+
+
+def momentum_bullet(doneB):
+    """The 'Momentum budget of case B' item of Known disagreements (finest case B run)."""
+    if not doneB:
+        return "- **Momentum budget of case B.** Not run."
+    r, n = doneB[-1]
+    gran = case_value(r, "phase", "granular", {})
+    mb = momentum_budget(r, gran.get("rho", 1450.0) if isinstance(gran, dict) else 1450.0)
+    if mb is None:
+        return ("- **Momentum budget of case B.** The finest run has no wall forces in "
+                "diagnostics.csv.")
+    return ("- **Momentum budget of case B** (n = " + str(n) + ", from diagnostics.csv): the "
+            "horizontal momentum of the grains follows M dU/dt = −F_bottom + N_back (the bottom's "
+            "Coulomb friction and the back wall's push) with an RMS residual of "
+            f"{mb['rms']:.1f} N/m (max {mb['max']:.1f} N/m, at the output interval of 0.01 s) "
+            f"against a mean friction of {mb['fb_mean']:.0f} N/m: the runout is what the wall "
+            "forces give, not a conservation error. In the deceleration phase (0.6–0.8 s) the "
+            f"bottom friction is {mb['fb']:.0f} N/m, the back wall pushes with {mb['nl']:.0f} N/m, "
+            f"and the mean velocity falls at {mb['decel']:.2f} m/s² ((F − N)/M = "
+            f"{(mb['fb'] - mb['nl']) / mb['M']:.2f} m/s²). The front passes the paper's final "
+            f"1.145 m at t = {mb['t_pass']:.2f} s, still moving at about {mb['vfront_08']:.2f} m/s "
+            f"at 0.8 s (the paper: front at rest near 0.9 s). The friction law and the wall load "
+            "of a Drucker–Prager layer are verified where the answer is known "
+            "(`tests/verification/test_dp_slide.sh`: plug acceleration within 0.21 %, friction = "
+            "tan α_b × load to 10 digits); why the paper's mass stops sooner is not known.")
+
+
 def case_value(r, section, key, default=float("nan")):
     """A value of a run's resolved case.toml (every key with the value used); default if the
     file or the key is missing (runs made before the key existed)."""
@@ -1223,6 +1279,7 @@ def main():
              if len(doneB) >= 2 and all(b[0].v("runout_m") > a[0].v("runout_m")
                                         for a, b in zip(doneB, doneB[1:]))
              and doneB[-1][0].v("runout_m") > B_RUNOUT_PAPER[15.0] else ""),
+          momentum_bullet(doneB),
           "- **Slopes of case B.** " + ("; ".join(
               f"n = {n}: {r.v('slope_back_deg'):.1f}° and {r.v('slope_front_deg'):.1f}°"
               for r, n in doneB) if doneB else "not run") +
