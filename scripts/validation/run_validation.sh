@@ -35,6 +35,8 @@ B="$root/cases/ar2_smooth.toml"
 BHP="$root/cases/ar2_smooth_hp.toml"
 wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.friction_angle=$1"; }
 
+# The relaxation study (a_n64_theta*): theta of eq. 31 is theta_per_dt x dt, 10 in the paper
+# (section 4.1.3) and in the case files; these runs take 1, 3, 30 and 100 instead.
 # The time-step study (b_n64_dt*, a_n128_dt1e-4): the paper fixed dt = 1e-4 s (sections 4.1.3,
 # 4.2.2); the case files take dt from CFL 0.4 capped at 1e-3 s. Those runs cap dt at the paper's
 # value and keep the redistancing interval in seconds (every 50 steps of 1e-4 s = every 5 steps
@@ -58,6 +60,8 @@ RUNS=(
   "b_n64_w15|default|2 min|$B|--set grid.n=64"
   "b_n64_w12.5|default|2 min|$B|--set grid.n=64 $(wall 12.5)"
   "b_n64_w17.5|default|2 min|$B|--set grid.n=64 $(wall 17.5)"
+  "b_n64_eta0.01|default|2.5 min|$B|--set grid.n=64 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
+  "b_n64_eta0.01_r10|default|2.5 min|$B|--set grid.n=64 --set phase.granular.eta=0.01 --set time.dt_max=5e-4 --set levelset.redistance_every=10"
   "a_n128|full|3-4 min|$A|--set grid.n=128"
   "a_hp_n128|full|25 min|$AHP|--set grid.n=128"
   "a_n128_eta0.01|full|6-8 min|$A|--set grid.n=128 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
@@ -66,6 +70,7 @@ RUNS=(
   "b_n128_w15|full|5-7 min|$B|--set grid.n=128"
   "b_n128_w12.5|full|5-7 min|$B|--set grid.n=128 $(wall 12.5)"
   "b_n128_w17.5|full|5-7 min|$B|--set grid.n=128 $(wall 17.5)"
+  "b_n128_eta0.01|full|10-15 min|$B|--set grid.n=128 --set phase.granular.eta=0.01 --set time.dt_max=5e-4"
   "b_hp_n128|full|2 h|$BHP|--set grid.n=128"
   "a_hp_n64_it300|full|5.5 min|$AHP|--set grid.n=64 --set rheology.fp_max_iter=300 --set output.vtk_interval=0"
   "a_hp_n64_dt1e-3|full|1 min|$AHP|--set grid.n=64 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
@@ -73,6 +78,10 @@ RUNS=(
   "b_hp_n32_dt1e-3|full|1.5 min|$BHP|--set grid.n=32 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
   "b_hp_n64_dt1e-3|full|3-4 min|$BHP|--set grid.n=64 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
   "b_hp_n128_dt1e-3|full|10-12 min|$BHP|--set grid.n=128 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
+  "a_n64_theta1|full|2 min|$A|--set grid.n=64 --set rheology.theta_per_dt=1"
+  "a_n64_theta3|full|2 min|$A|--set grid.n=64 --set rheology.theta_per_dt=3"
+  "a_n64_theta30|full|1.5 min|$A|--set grid.n=64 --set rheology.theta_per_dt=30"
+  "a_n64_theta100|full|1.5 min|$A|--set grid.n=64 --set rheology.theta_per_dt=100"
   "b_n64_dt2.5e-4|full|2.5 min|$B|--set grid.n=64 --set time.dt_max=2.5e-4 --set levelset.redistance_every=20"
   "b_n64_dt1e-4|full|5 min|$B|--set grid.n=64 --set time.dt_max=1e-4 --set levelset.redistance_every=50"
   "b_n64_dt1e-4_r5|full|5 min|$B|--set grid.n=64 --set time.dt_max=1e-4"
