@@ -1143,6 +1143,14 @@ def main():
                   "interval kept (n = 64) or shortened by a third (n = 128), granflow's case B "
                   "runout hardly depends on η₀, unlike the "
                   "paper's.", ""]
+        if not a.no_figures and compare_plot(
+                [R[k] for k, _ in vis], [f"{k} (η₀ = {eta:g})" for k, eta in vis if R[k].ok],
+                os.path.join(figs_dir, "b_viscosity.png"),
+                "Case B: front and final deposit for η₀ = 0.1 and 0.01 (paper Figs. 20, 21)",
+                [(B_RUNOUT_EXP, "experiment runout 1.213 m", "tab:pink"),
+                 (B_RUNOUT_PAPER[15.0], "paper, η₀ = 0.1: 1.145 m", "tab:blue"),
+                 (B_RUNOUT_PAPER_ETA001, "paper, η₀ = 0.01: 1.08 m", "tab:cyan", ":")]):
+            L += [img(f"{FIG_REL}/b_viscosity.png", "case B viscosities"), ""]
 
     # ---- Time step: the paper's fixed dt = 1e-4 s against the case files' CFL-capped dt.
     L += ["### Time step: the paper's dt = 1e-4 s", "",
@@ -1204,6 +1212,14 @@ def main():
                  <= B_RUNOUT_PAPER[15.0] <= max(r.v("runout_m") for r in (b2, b5, b15) if r.ok)
                  else ""),
               ""]
+        if not a.no_figures and compare_plot(
+                [b1, b2, b15, b5], ["dt ≤ 1e-3 s, every 5 ms", "dt = 1e-4 s, every 5 ms",
+                                    "dt = 1e-4 s, every 1.5 ms", "dt = 1e-4 s, every 0.5 ms"],
+                os.path.join(figs_dir, "b_redistancing.png"),
+                "Case B, n = 64: time step and redistancing interval (front and final deposit)",
+                [(B_RUNOUT_EXP, "experiment runout 1.213 m", "tab:pink"),
+                 (B_RUNOUT_PAPER[15.0], "paper runout 1.145 m", "tab:blue")]):
+            L += [img(f"{FIG_REL}/b_redistancing.png", "case B redistancing interval"), ""]
     a1, a2 = R["a_n128"], R["a_n128_dt1e-4"]
     if a1.ok and a2.ok:
         L += [f"Case A at n = 128: runout {a1.v('runout_m'):.4f} → {a2.v('runout_m'):.4f} m "
