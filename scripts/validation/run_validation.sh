@@ -35,6 +35,8 @@ B="$root/cases/ar2_smooth.toml"
 BHP="$root/cases/ar2_smooth_hp.toml"
 wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.friction_angle=$1"; }
 
+# The HP time-step convergence (a_hp_n32*, a_hp_n64_dt*): the HP case file with dt capped at
+# 1e-3 ... 5e-5 s, redistancing every 5e-3 s throughout.
 # The relaxation study (a_n64_theta*): theta of eq. 31 is theta_per_dt x dt, 10 in the paper
 # (section 4.1.3) and in the case files; these runs take 1, 3, 30 and 100 instead.
 # The time-step study (b_n64_dt*, a_n128_dt1e-4): the paper fixed dt = 1e-4 s (sections 4.1.3,
@@ -74,6 +76,13 @@ RUNS=(
   "b_hp_n128|full|2 h|$BHP|--set grid.n=128"
   "a_hp_n64_it300|full|5.5 min|$AHP|--set grid.n=64 --set rheology.fp_max_iter=300 --set output.vtk_interval=0"
   "a_hp_n64_dt1e-3|full|1 min|$AHP|--set grid.n=64 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
+  "a_hp_n64_dt5e-4|full|2.5 min|$AHP|--set grid.n=64 --set time.dt_max=5e-4 --set output.vtk_interval=0"
+  "a_hp_n64_dt2.5e-4|full|5 min|$AHP|--set grid.n=64 --set time.dt_max=2.5e-4 --set output.vtk_interval=0"
+  "a_hp_n32_dt1e-3|full|20 s|$AHP|--set grid.n=32 --set time.dt_max=1e-3 --set output.vtk_interval=0"
+  "a_hp_n32_dt5e-4|full|40 s|$AHP|--set grid.n=32 --set time.dt_max=5e-4 --set output.vtk_interval=0"
+  "a_hp_n32_dt2.5e-4|full|70 s|$AHP|--set grid.n=32 --set time.dt_max=2.5e-4 --set output.vtk_interval=0"
+  "a_hp_n32|full|2.5 min|$AHP|--set grid.n=32 --set output.vtk_interval=0"
+  "a_hp_n32_dt5e-5|full|5 min|$AHP|--set grid.n=32 --set time.dt_max=5e-5 --set output.vtk_interval=0"
   "a_hp_n128_dt1e-3|full|6 min|$AHP|--set grid.n=128 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
   "b_hp_n32_dt1e-3|full|1.5 min|$BHP|--set grid.n=32 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
   "b_hp_n64_dt1e-3|full|3-4 min|$BHP|--set grid.n=64 --set time.dt_max=1e-3 --set levelset.redistance_interval=0"
