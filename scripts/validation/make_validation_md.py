@@ -468,12 +468,21 @@ def momentum_bullet(doneB, R):
     if mb is None:
         return ("- **Momentum budget of case B.** The finest run has no wall forces in "
                 "diagnostics.csv.")
+    by_n = []
+    for rr, nn in doneB:
+        g2 = case_value(rr, "phase", "granular", {})
+        m2 = momentum_budget(rr, g2.get("rho", 1450.0) if isinstance(g2, dict) else 1450.0)
+        if m2 is not None:
+            by_n.append((nn, m2["rms"]))
     return ("- **Momentum budget and deceleration of case B** (n = " + str(n) +
             ", from diagnostics.csv): the "
             "horizontal momentum of the grains follows M dU/dt = −F_bottom + N_back (the bottom's "
             "Coulomb friction and the back wall's push) with an RMS residual of "
             f"{mb['rms']:.1f} N/m (max {mb['max']:.1f} N/m, at the output interval of 0.01 s) "
-            f"against a mean friction of {mb['fb_mean']:.0f} N/m: the runout is what the wall "
+            f"against a mean friction of {mb['fb_mean']:.0f} N/m"
+            + (", and the residual falls with h (" + ", ".join(
+                f"n = {nn}: {res:.1f} N/m" for nn, res in by_n) + ")" if len(by_n) > 1 else "")
+            + ": the runout is what the wall "
             "forces give, not a conservation error. In the deceleration phase (0.6–0.8 s) the "
             f"bottom friction is {mb['fb']:.0f} N/m, the back wall pushes with {mb['nl']:.0f} N/m, "
             f"and the mean velocity falls at {mb['decel']:.2f} m/s² ((F − N)/M = "
