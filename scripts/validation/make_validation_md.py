@@ -536,6 +536,7 @@ def eroding_fronts_text(R, t0=0.6):
             "it does not give its redistancing frequency, so this is a possible cause of the "
             "difference, not a shown one.")
 
+
 HP_DT_RUNS = {32: [("a_hp_n32_dt1e-3", 1e-3), ("a_hp_n32_dt5e-4", 5e-4),
                    ("a_hp_n32_dt2.5e-4", 2.5e-4), ("a_hp_n32", 1e-4), ("a_hp_n32_dt5e-5", 5e-5)],
               64: [("a_hp_n64_dt1e-3", 1e-3), ("a_hp_n64_dt5e-4", 5e-4),
@@ -543,8 +544,8 @@ HP_DT_RUNS = {32: [("a_hp_n32_dt1e-3", 1e-3), ("a_hp_n32_dt5e-4", 5e-4),
 
 
 def hp_dt_convergence(R):
-    """HP case A's runout against the time-step cap (redistancing every 5e-3 s throughout): a
-    table and its reading (first-order Richardson limit from the two smallest dt)."""
+    """HP case A's runout against the time-step cap (redistancing every 5e-3 s throughout), as
+    errors against its dt -> 0 limit (first-order Richardson from the two smallest dt)."""
     lines = []
     for n, runs in HP_DT_RUNS.items():
         ok = [(R[k], dt) for k, dt in runs if R[k].ok]
@@ -560,8 +561,9 @@ def hp_dt_convergence(R):
             "runs `a_hp_n32*`, `a_hp_n64_dt*`, `a_hp_n64`; runout against its dt → 0 limit, a "
             "first-order Richardson extrapolation from the two smallest dt): " + "; ".join(lines)
             + ". So the HP runout carries a time error that is large at the DP files' 1e-3 s "
-            "and about 1 % or less at the paper's 1e-4 s; the scheme is first order in time, as "
-            "the paper says of θ ∝ δt (section 4.1.3).")
+            "and about 1 % or less at the paper's 1e-4 s (the scheme is first order in time, "
+            "section 4.1.3).")
+
 
 def basal_slip_near_front(r, t0, length=0.01):
     """Min and max of the bottom row's u over the last `length` m behind the front, from the VTK
@@ -645,6 +647,7 @@ def redistance_period(r):
         return float(interval)
     every = case_value(r, "levelset", "redistance_every", float("nan"))
     return r.v("t_end") / r.v("steps") * every
+
 
 def case_value(r, section, key, default=float("nan")):
     """A value of a run's resolved case.toml (every key with the value used); default if the
@@ -1277,8 +1280,8 @@ def main():
               if o.ok and w.ok]
     if hp_txt:
         L += ["The HP model is another matter: from the cap of 1e-3 s to the paper's 1e-4 s its "
-              "runout moves by " + "; ".join(hp_txt) + "." + hp_dt_convergence(R) + " It is not "
-              "the relaxation θ of eq. 31: changed ten times at a fixed dt, it leaves HP case A at "
+              "runout moves by " + "; ".join(hp_txt) + "." + hp_dt_convergence(R) + " The error is "
+              "not the relaxation θ's (eq. 31): changed ten times at a fixed dt, θ leaves HP case A at "
               "n = 32 where it was (redistancing every 5 steps; at dt = 1e-3 s runout 0.3737 m "
               "with θ = 10 dt and 0.3740 m with θ = dt, `--set rheology.theta_per_dt=1 --set "
               "time.dt_max=1e-3`; at 1e-4 s 0.3303 m with θ = 10 dt and 100 dt, `--set "
