@@ -1214,7 +1214,8 @@ def main():
                ("b_n64_dt1e-4_r15", "B"), ("b_n64_dt1e-4_r5", "B"), ("a_n128", "A"),
                ("a_n128_dt1e-4", "A"), ("a_hp_n64_dt1e-3", "A HP"), ("a_hp_n64", "A HP"),
                ("a_hp_n128_dt1e-3", "A HP"), ("a_hp_n128", "A HP"), ("b_hp_n32_dt1e-3", "B HP"),
-               ("b_hp_n32", "B HP"), ("b_hp_n64_dt1e-3", "B HP"), ("b_hp_n64", "B HP")]
+               ("b_hp_n32", "B HP"), ("b_hp_n64_dt1e-3", "B HP"), ("b_hp_n64", "B HP"),
+               ("b_hp_n128_dt1e-3", "B HP"), ("b_hp_n128", "B HP")]
     ref_of = {"A": (A_RUNOUT_PAPER, A_RUNOUT_EXP), "B": (B_RUNOUT_PAPER[15.0], B_RUNOUT_EXP),
               "A HP": (A_RUNOUT_EXP * (1 - A_HP_DEFICIT), A_RUNOUT_EXP),
               "B HP": (B_RUNOUT_EXP * (1 - B_HP_DEFICIT), B_RUNOUT_EXP)}
@@ -1274,7 +1275,7 @@ def main():
               + (": the paper's time step does not bring the peak pressure under ρ_s g H_c."
                  if a2.v("max_p_granular_ratio") > 1 else "."), ""]
     hp_pairs = [(R[f"{c}_hp_n{n}_dt1e-3"], R[f"{c}_hp_n{n}"], c.upper(), n)
-                for c, n in (("a", 64), ("a", 128), ("b", 32), ("b", 64))]
+                for c, n in (("a", 64), ("a", 128), ("b", 32), ("b", 64), ("b", 128))]
     hp_txt = [f"{c} at n = {n}: {o.v('runout_m'):.3f} → {w.v('runout_m'):.3f} m "
               f"({pct(rel(w.v('runout_m'), o.v('runout_m')))})" for o, w, c, n in hp_pairs
               if o.ok and w.ok]
