@@ -19,7 +19,8 @@
 # Times are wall times on one core of the development machine (2 cores, unloaded), for the code
 # with local viscous solves (docs/PERFORMANCE.md, fourth round): measured for a_n128 (190 s);
 # from 2-rank runs times 1.5 (the 1-to-2-rank speed-up at n = 256) for a_n128_eta0.01 (242 s),
-# b_hp_n128 (408 s), a_n256 (23.4 min) and b_n256_w15 (22.2 min); the others are earlier
+# b_hp_n128_dt1e-3 (408 s), b_hp_n128 (72 min on 2 ranks, about 2 h on one), a_n256 (23.4 min)
+# and b_n256_w15 (22.2 min); the others are earlier
 # one-core times scaled by the 0.6 that case A at n = 128 gained. The default tier's are older
 # measurements and likely high.
 set -uo pipefail
