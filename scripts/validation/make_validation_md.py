@@ -448,14 +448,19 @@ def momentum_budget(r, rho=1450.0):
     fb = np.abs(d["bottom_friction_N"][m]).mean()
     w = (t >= 0.6 - 1e-9) & (t <= 0.8 + 1e-9)
     i8 = int(np.argmin(np.abs(t - 0.8)))
-    v_front = np.gradient(d["front_x"], t)
     return {"rms": float(np.sqrt((res ** 2).mean())), "max": float(np.abs(res).max()),
             "fb_mean": float(fb), "fb": float(d["bottom_friction_N"][w].mean()),
             "nl": float(d["left_normal_N"][w].mean()), "M": float(M[w].mean()),
             "decel": float(-np.polyfit(t[w], U[w], 1)[0]) if w.sum() >= 3 else float("nan"),
-            "front_08": float(d["front_x"][i8]), "vfront_08": float(v_front[i8]),
+            "vfront_08": float(np.gradient(d["front_x"], t)[i8]),
             "t_pass": float(t[np.argmax(d["front_x"] >= 1.145)])
             if (d["front_x"] >= 1.145).any() else float("nan")}
+
+
+def granular_rho(r, default=1450.0):
+    """phase.granular.rho of a run's resolved case.toml (kg/m^3)."""
+    gran = case_value(r, "phase", "granular", {})
+    return gran.get("rho", default) if isinstance(gran, dict) else default
 
 
 def momentum_bullet(doneB, R):
@@ -463,15 +468,13 @@ def momentum_bullet(doneB, R):
     if not doneB:
         return "- **Momentum budget of case B.** Not run."
     r, n = doneB[-1]
-    gran = case_value(r, "phase", "granular", {})
-    mb = momentum_budget(r, gran.get("rho", 1450.0) if isinstance(gran, dict) else 1450.0)
+    mb = momentum_budget(r, granular_rho(r))
     if mb is None:
         return ("- **Momentum budget of case B.** The finest run has no wall forces in "
                 "diagnostics.csv.")
     by_n = []
     for rr, nn in doneB:
-        g2 = case_value(rr, "phase", "granular", {})
-        m2 = momentum_budget(rr, g2.get("rho", 1450.0) if isinstance(g2, dict) else 1450.0)
+        m2 = momentum_budget(rr, granular_rho(rr))
         if m2 is not None:
             by_n.append((nn, m2["rms"]))
     return ("- **Momentum budget and deceleration of case B** (n = " + str(n) +
@@ -592,11 +595,9 @@ def coulomb_bound_text(r, t0=0.6, t_stop_paper=0.9, wall_deg=15.0, g=9.81):
     runout this allows from the run's state at t0 with the paper's account of its stages."""
     d = r.diag
     t, x = d["t"], d["front_x"]
-    m = (t >= t0 - 0.05 - 1e-9) & (t <= t0 + 0.05 + 1e-9)
-    if m.sum() < 3:
+    if ((t >= t0 - 0.05 - 1e-9) & (t <= t0 + 0.05 + 1e-9)).sum() < 3:
         return ""
-    v0 = float(np.polyfit(t[m], x[m], 1)[0])
-    x0 = float(np.interp(t0, t, x))
+    x0, v0, _ = front_state(r, t0, g, wall_deg)
     a_max = g * math.tan(math.radians(wall_deg))
     vel = np.gradient(x, t)
     decel = []
@@ -898,15 +899,14 @@ def main():
         L += [img(f"{FIG_REL}/a_viscosity.png", "case A viscosities"), ""]
 
     # The relaxation theta of eq. 31.
-    At = THETA_RUNS
-    if any(R[k].ok for k, th in At if th != 10):
+    if any(R[k].ok for k, th in THETA_RUNS if th != 10):
         L += ["### Relaxation θ of eq. 31 (n = 64)", "",
               "The fixed point of eq. 31 relaxes S towards Sⁿ with θ; the paper takes θ = 10 δt "
               "(section 4.1.3: small enough for the plastic stress to be resolved, as theory "
               "suggests θ of the order of δt), as do the case files "
               "(`rheology.theta_per_dt` = 10). These runs change only θ (dt ≤ 1e-3 s).", ""]
         rows = []
-        for k, th in At:
+        for k, th in THETA_RUNS:
             r = R[k]
             if r.ok:
                 d = r.diag
@@ -922,7 +922,7 @@ def main():
         L += [table(["run", "θ", "runout (m)", "furthest front (m)", "back wall (m)", "t_f (s)",
                      "max granular p / ρ_s g H_c", "volume change (%)", "capped steps",
                      "wall time"], rows), ""]
-        okt = [(th, R[k]) for k, th in At if R[k].ok]
+        okt = [(th, R[k]) for k, th in THETA_RUNS if R[k].ok]
         if len(okt) >= 3:
             pk = [r.v("max_p_granular_ratio") for _, r in okt]
             ro = [r.v("runout_m") for _, r in okt]

@@ -5,8 +5,9 @@
 #  1. theta = 20 deg > alpha_b = 15 deg, n = 16 and 32: the layer slides as a plug at
 #     a = g (sin theta - tan(alpha_b) cos theta) = 0.8852 m/s^2 (least-squares slope of the mean
 #     granular velocity over t in [0.02, 0.2] s). Measured -0.20 % / -0.21 %, the same offset at
-#     both grids; without the air (levelset.enabled = false, shape "none") +0.02 %, so it comes
-#     from the air and the smeared band above, not from the wall's discretisation.
+#     both grids; without the air (--set levelset.enabled=false --set initial.shape=none, n = 16,
+#     the same fit) +0.0004 %, so it comes from the air and the smeared band above, not from the
+#     wall's discretisation.
 #     Required: within 1 %; the bottom normal force within 0.5 % of the weight of the layer and
 #     the air above it (measured within 1e-5); the friction force over the normal force within
 #     1e-6 of tan(alpha_b) (measured 0.2679491924).
