@@ -40,6 +40,10 @@ wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.frict
 # 1e-3 ... 5e-5 s, redistancing every 5e-3 s throughout.
 # The relaxation study (a_n64_theta*): theta of eq. 31 is theta_per_dt x dt, 10 in the paper
 # (section 4.1.3) and in the case files; these runs take 1, 3, 30 and 100 instead.
+# The augmentation study (*_rf*): r of eq. 31 is r_factor (2 eta + rho a0 h^2/dt) / kappa^2 (the
+# paper: "any r > 0"), 0.5 in the case files; these runs take 0.125 and 0.25 instead (0.7 and 1
+# do not converge on case A: the fixed point oscillates in the first 20 steps). With theta > 0
+# the converged step depends on r / theta (docs/RHEOLOGY.md).
 # The time-step study (b_n64_dt*, a_n128_dt1e-4): the paper fixed dt = 1e-4 s (sections 4.1.3,
 # 4.2.2); the case files take dt from CFL 0.4 capped at 1e-3 s. Those runs cap dt at the paper's
 # value and keep the redistancing interval in seconds (every 50 steps of 1e-4 s = every 5 steps
@@ -92,6 +96,12 @@ RUNS=(
   "a_n64_theta3|full|2 min|$A|--set grid.n=64 --set rheology.theta_per_dt=3"
   "a_n64_theta30|full|1.5 min|$A|--set grid.n=64 --set rheology.theta_per_dt=30"
   "a_n64_theta100|full|1.5 min|$A|--set grid.n=64 --set rheology.theta_per_dt=100"
+  "a_n64_rf0.25|full|1.5 min|$A|--set grid.n=64 --set rheology.r_factor=0.25"
+  "a_n64_rf0.125|full|1.5 min|$A|--set grid.n=64 --set rheology.r_factor=0.125"
+  "a_n128_rf0.25|full|6 min|$A|--set grid.n=128 --set rheology.r_factor=0.25"
+  "a_n128_rf0.125|full|6 min|$A|--set grid.n=128 --set rheology.r_factor=0.125"
+  "b_n64_rf0.25|full|2 min|$B|--set grid.n=64 --set rheology.r_factor=0.25"
+  "b_n64_rf0.125|full|2 min|$B|--set grid.n=64 --set rheology.r_factor=0.125"
   "b_n64_dt2.5e-4|full|2.5 min|$B|--set grid.n=64 --set time.dt_max=2.5e-4 --set levelset.redistance_every=20"
   "b_n64_dt1e-4|full|5 min|$B|--set grid.n=64 --set time.dt_max=1e-4 --set levelset.redistance_every=50"
   "b_n64_dt1e-4_r5|full|5 min|$B|--set grid.n=64 --set time.dt_max=1e-4"

@@ -174,9 +174,12 @@ Params case_params() {
              "observed in the paper; how often it acts is reported.");
   p.add_real("rheology.r_factor", "", 0.5, Range::gt(0),
              "Fixed point of eq. 31: the augmentation of the projection is r = r_factor (2 eta "
-             "+ rho a0 h^2/dt) / kappa^2, a local choice; any r > 0 has the same fixed point, "
-             "r_factor only changes how fast it is reached (1 oscillates on case A, 0.5 "
-             "converges).");
+             "+ rho a0 h^2/dt) / kappa^2, a local choice (the paper: any r > 0). With theta > 0 "
+             "the converged step depends on r / theta: where S stays inside the yield surface "
+             "the material creeps at D = theta (S - S^n) / (r kappa), so a larger r is a stiffer "
+             "unyielded zone; the stresses there move with it (case A's peak granular pressure by "
+             "a few %, docs/VALIDATION.md \"Augmentation r\"). 1 oscillates on case A, 0.5 "
+             "converges.");
   p.add_enum("rheology.plastic_grid", "cell", kPlasticGrids,
              "Where the plastic tensor S lives: cell = at the cell centres only, the shear rate "
              "there the mean of the four node shear rates (the paper, section 3.4); cell_node = "

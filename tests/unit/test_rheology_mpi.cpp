@@ -2,6 +2,7 @@
 // viscosity (eq. 11), and the hydrostatic pressure of eq. 15 across MPI subdomains.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "fields/Fields.hpp"
@@ -165,4 +166,73 @@ TEST(Rheology, BinghamMassSupportFollowsTheGranularFraction) {
     EXPECT_LT(g.max(err), 1e-9 * tau) << "shift " << shift;
     EXPECT_EQ(g.max(at_eps), 0.0) << "shift " << shift;  // no yield stress in the air row
   }
+}
+
+TEST(Rheology, RelaxedProjectionFixedPointDependsOnROverTheta) {
+  // The local map of eq. 31, S <- P(S + r kappa D + theta (S^n - S)), iterated with D frozen
+  // (rheology::update_plastic), converges geometrically (ratio 1 - theta) to:
+  //  - where |S^n + r kappa D / theta| <= 1: S = S^n + (r kappa / theta) D. The step is not rigid:
+  //    it creeps at D = theta (S - S^n) / (r kappa), so r and theta together set the answer;
+  //  - elsewhere: S = (theta S^n + r kappa D) / |theta S^n + r kappa D|, which also depends on r
+  //    unless S^n is parallel to D.
+  // Only at theta = 0 (eq. 29) is the fixed point the same for any r > 0. The exact answers
+  // here use r = r_factor (2 eta + rho a0/dt h^2) / kappa^2 written out, not r_local().
+  Grid g(PETSC_COMM_WORLD, 8, 8, 0.08, 0.08);  // h = 0.01 m
+  Field S(g.dm_ten(), "S"), Sn(g.dm_ten(), "Sn"), D(g.dm_ten(), "D");
+  Field k(g.dm_cell(), "kappa"), rho(g.dm_cell(), "rho"), eta(g.dm_cell(), "eta");
+  const double kappa = 200.0, rh = 1500.0, et = 0.5, a0dt = 1.5 / 1e-3, theta = 0.05;  // SI
+  const double snxx = 0.1, snxy = -0.2;  // S^n
+  VecSet(k, kappa);
+  VecSet(rho, rh);
+  VecSet(eta, et);
+  auto fill = [&](Vec v, double xx, double xy, double yy) {
+    PetscScalar*** a;
+    const Box& b = g.box();
+    DMDAVecGetArrayDOF(g.dm_ten(), v, &a);
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        a[j][i][0] = xx;
+        a[j][i][1] = xy;
+        a[j][i][2] = yy;
+      }
+    DMDAVecRestoreArrayDOF(g.dm_ten(), v, &a);
+  };
+  auto solve = [&](double r_factor, double dxx, double dxy) {
+    rheology::Params pr;
+    pr.yield = rheology::Yield::DruckerPrager;
+    pr.r_factor = r_factor;
+    fill(Sn, snxx, snxy, -snxx);
+    fill(S, 0.0, 0.0, 0.0);
+    fill(D, dxx, dxy, -dxx);  // traceless: its deviatoric xx part is dxx
+    double ch = 1;
+    for (int it = 0; it < 3000 && ch > 1e-14; ++it)
+      ch = rheology::update_plastic(g, pr, S, Sn, k, D, rho, eta, a0dt, theta);
+    EXPECT_LT(ch, 1e-13);
+    const PetscScalar*** a;
+    DMDAVecGetArrayDOFRead(g.dm_ten(), S, &a);
+    const Box& b = g.box();
+    std::array<double, 2> s = {a[b.ys][b.xs][0], a[b.ys][b.xs][1]};
+    DMDAVecRestoreArrayDOFRead(g.dm_ten(), S, &a);
+    return s;
+  };
+  const double h2 = 0.01 * 0.01;
+  for (const double rf : {0.25, 0.5}) {
+    const double rk = rf * (2.0 * et + rh * a0dt * h2) / kappa;  // r kappa, s
+    // Inside the ball: a strain rate (1/s) for which S = S^n + (r kappa / theta) D = (0.4, 0).
+    const double dxx = 0.3 * theta / rk, dxy = 0.2 * theta / rk;
+    const auto s = solve(rf, dxx, dxy);
+    EXPECT_NEAR(s[0], 0.4, 1e-12) << "r_factor " << rf;
+    EXPECT_NEAR(s[1], 0.0, 1e-12) << "r_factor " << rf;
+    // On the yield surface: a large strain rate not parallel to S^n.
+    const double Dxx = 5.0, Dxy = 3.0;
+    const auto t = solve(rf, Dxx, Dxy);
+    const double ax = theta * snxx + rk * Dxx, ay = theta * snxy + rk * Dxy, n = std::hypot(ax, ay);
+    EXPECT_NEAR(t[0], ax / n, 1e-12) << "r_factor " << rf;
+    EXPECT_NEAR(t[1], ay / n, 1e-12) << "r_factor " << rf;
+  }
+  // The same D with r halved: inside the ball the creep answer moves by half its increment.
+  const double rk1 = 0.5 * (2.0 * et + rh * a0dt * h2) / kappa;
+  const auto s1 = solve(0.5, 0.01 * theta / rk1, 0.0), s2 = solve(0.25, 0.01 * theta / rk1, 0.0);
+  EXPECT_NEAR(s1[0] - snxx, 0.01, 1e-12);
+  EXPECT_NEAR(s2[0] - snxx, 0.005, 1e-12);
 }
