@@ -41,12 +41,13 @@ wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.frict
 # The relaxation study (a_n64_theta*): theta of eq. 31 is theta_per_dt x dt, 10 in the paper
 # (section 4.1.3) and in the case files; these runs take 1, 3, 30 and 100 instead.
 # The augmentation study (*_rf*): r of eq. 31 is r_factor (2 eta + rho a0 h^2/dt) / kappa^2 (the
-# paper: "any r > 0"), 0.5 in the case files; these runs take 0.125 and 0.25 instead (0.7 and 1
+# paper: "any r > 0"), 0.5 in the case files (the *_rf0.5 runs: the case files as they are now,
+# the bases of these studies); these runs take 0.125 and 0.25 instead (0.7 and 1
 # do not converge on case A: the fixed point oscillates in the first 20 steps). With theta > 0
 # the converged step depends on r / theta (docs/RHEOLOGY.md).
-# Where HP's time error comes from (a_hp_n64_dt1e-3_*, a_hp_n64_rf0.05): at the 1e-3 s cap, theta
-# ten times smaller, r_factor four times smaller, the stresses of an equilibrium start; at the
-# paper's 1e-4 s, r_factor ten times smaller (r about as at the cap). Made into /tmp and moved in.
+# Where HP's time error shows (a_hp_n64_dt1e-3_*, a_hp_n64_rf0.05): at the 1e-3 s cap, theta ten
+# times smaller, r_factor four times smaller, the stresses of an equilibrium start; at the paper's
+# 1e-4 s, r_factor ten times smaller (r about as at the cap). Made into /tmp and moved in.
 # Case B's sensitivity to what the paper does not fix (b_n64_theta*, b_n64_eps1.5, b_n64_mass,
 # with b_n64_rf* and b_n64_dt*): theta, the interface half-width eps (the paper does not give it;
 # 1.0 h in the case files), and where the yield stress and the wall friction act (the paper: where
@@ -103,6 +104,9 @@ RUNS=(
   "a_n64_theta3|full|2 min|$A|--set grid.n=64 --set rheology.theta_per_dt=3"
   "a_n64_theta30|full|1.5 min|$A|--set grid.n=64 --set rheology.theta_per_dt=30"
   "a_n64_theta100|full|1.5 min|$A|--set grid.n=64 --set rheology.theta_per_dt=100"
+  "a_n64_rf0.5|full|1 min|$A|--set grid.n=64 --set rheology.r_factor=0.5"
+  "a_n128_rf0.5|full|4 min|$A|--set grid.n=128 --set rheology.r_factor=0.5"
+  "b_n64_rf0.5|full|1 min|$B|--set grid.n=64 --set rheology.r_factor=0.5"
   "a_n64_rf0.25|full|1.5 min|$A|--set grid.n=64 --set rheology.r_factor=0.25"
   "a_n64_rf0.125|full|1.5 min|$A|--set grid.n=64 --set rheology.r_factor=0.125"
   "a_n128_rf0.25|full|6 min|$A|--set grid.n=128 --set rheology.r_factor=0.25"

@@ -176,8 +176,8 @@ Params case_params() {
              "Fixed point of eq. 31: the augmentation of the projection is r = r_factor (2 eta "
              "+ rho a0 h^2/dt) / kappa^2, a local choice (the paper: any r > 0). With theta > 0 "
              "the converged step depends on r / theta: where S stays inside the yield surface "
-             "the material creeps at D = theta (S - S^n) / (r kappa), so a larger r is a stiffer "
-             "unyielded zone; the stresses there move with it (case A's peak granular pressure by "
+             "the material deforms with D = theta (S - S^n) / (r kappa), like an elastic solid "
+             "that a larger r makes stiffer; the stresses there move with it (case A's peak granular pressure by "
              "a few %, docs/VALIDATION.md \"Augmentation r\"). 1 oscillates on case A, 0.5 "
              "converges.");
   p.add_enum("rheology.plastic_grid", "cell", kPlasticGrids,

@@ -171,17 +171,18 @@ TEST(Rheology, BinghamMassSupportFollowsTheGranularFraction) {
 TEST(Rheology, RelaxedProjectionFixedPointDependsOnROverTheta) {
   // The local map of eq. 31, S <- P(S + r kappa D + theta (S^n - S)), iterated with D frozen
   // (rheology::update_plastic), converges geometrically (ratio 1 - theta) to:
-  //  - where |S^n + r kappa D / theta| <= 1: S = S^n + (r kappa / theta) D. The step is not rigid:
-  //    it creeps at D = theta (S - S^n) / (r kappa), so r and theta together set the answer;
+  //  - where |S^n + r kappa D / theta| <= 1: S = S^n + (r kappa / theta) D, D's deviatoric part.
+  //    The step is not rigid: it deforms in proportion to the stress increment, like an elastic
+  //    solid whose compliance theta / (r kappa) is set by r and theta together;
   //  - elsewhere: S = (theta S^n + r kappa D) / |theta S^n + r kappa D|, which also depends on r
-  //    unless S^n is parallel to D.
+  //    and theta unless S^n is parallel to D.
   // Only at theta = 0 (eq. 29) is the fixed point the same for any r > 0. The exact answers
   // here use r = r_factor (2 eta + rho a0/dt h^2) / kappa^2 written out, not r_local().
   Grid g(PETSC_COMM_WORLD, 8, 8, 0.08, 0.08);  // h = 0.01 m
   Field S(g.dm_ten(), "S"), Sn(g.dm_ten(), "Sn"), D(g.dm_ten(), "D");
   Field k(g.dm_cell(), "kappa"), rho(g.dm_cell(), "rho"), eta(g.dm_cell(), "eta");
-  const double kappa = 200.0, rh = 1500.0, et = 0.5, a0dt = 1.5 / 1e-3, theta = 0.05;  // SI
-  const double snxx = 0.1, snxy = -0.2;  // S^n
+  const double kappa = 200.0, rh = 1500.0, et = 0.5, a0dt = 1.5 / 1e-3;  // SI
+  const double snxx = 0.1, snxy = -0.2;                                // S^n
   VecSet(k, kappa);
   VecSet(rho, rh);
   VecSet(eta, et);
@@ -197,17 +198,20 @@ TEST(Rheology, RelaxedProjectionFixedPointDependsOnROverTheta) {
       }
     DMDAVecRestoreArrayDOF(g.dm_ten(), v, &a);
   };
-  auto solve = [&](double r_factor, double dxx, double dxy) {
+  // Iterates from S = S^n (not 0: from 0 the boundary case lands on its answer at once).
+  auto solve = [&](double r_factor, double theta, double dxx, double dxy) {
     rheology::Params pr;
     pr.yield = rheology::Yield::DruckerPrager;
     pr.r_factor = r_factor;
     fill(Sn, snxx, snxy, -snxx);
-    fill(S, 0.0, 0.0, 0.0);
-    fill(D, dxx, dxy, -dxx);  // traceless: its deviatoric xx part is dxx
+    fill(S, snxx, snxy, -snxx);
+    fill(D, dxx + 0.3, dxy, -dxx + 0.3);  // a trace (0.6): only the deviatoric part counts
     double ch = 1;
-    for (int it = 0; it < 3000 && ch > 1e-14; ++it)
+    int it = 0;
+    for (; it < 5000 && ch > 1e-14; ++it)
       ch = rheology::update_plastic(g, pr, S, Sn, k, D, rho, eta, a0dt, theta);
     EXPECT_LT(ch, 1e-13);
+    EXPECT_GT(it, 5);  // a fixed point reached by iterating, not by the first projection
     const PetscScalar*** a;
     DMDAVecGetArrayDOFRead(g.dm_ten(), S, &a);
     const Box& b = g.box();
@@ -216,23 +220,29 @@ TEST(Rheology, RelaxedProjectionFixedPointDependsOnROverTheta) {
     return s;
   };
   const double h2 = 0.01 * 0.01;
-  for (const double rf : {0.25, 0.5}) {
-    const double rk = rf * (2.0 * et + rh * a0dt * h2) / kappa;  // r kappa, s
-    // Inside the ball: a strain rate (1/s) for which S = S^n + (r kappa / theta) D = (0.4, 0).
-    const double dxx = 0.3 * theta / rk, dxy = 0.2 * theta / rk;
-    const auto s = solve(rf, dxx, dxy);
-    EXPECT_NEAR(s[0], 0.4, 1e-12) << "r_factor " << rf;
-    EXPECT_NEAR(s[1], 0.0, 1e-12) << "r_factor " << rf;
-    // On the yield surface: a large strain rate not parallel to S^n.
-    const double Dxx = 5.0, Dxy = 3.0;
-    const auto t = solve(rf, Dxx, Dxy);
-    const double ax = theta * snxx + rk * Dxx, ay = theta * snxy + rk * Dxy, n = std::hypot(ax, ay);
-    EXPECT_NEAR(t[0], ax / n, 1e-12) << "r_factor " << rf;
-    EXPECT_NEAR(t[1], ay / n, 1e-12) << "r_factor " << rf;
+  auto rk = [&](double rf) { return rf * (2.0 * et + rh * a0dt * h2) / kappa; };  // r kappa, s
+  // Inside the ball, the same small strain rate (1/s) for three (r_factor, theta): the answer
+  // moves with r / theta, and the first and last pairs, with the same r / theta, agree.
+  const double dxx = 0.02, dxy = 0.01;
+  std::array<double, 2> in[3];
+  const double pairs[3][2] = {{0.25, 0.05}, {0.5, 0.05}, {0.5, 0.1}};
+  for (int q = 0; q < 3; ++q) {
+    const double rf = pairs[q][0], th = pairs[q][1], c = rk(rf) / th;
+    in[q] = solve(rf, th, dxx, dxy);
+    ASSERT_LT(std::hypot(snxx + c * dxx, snxy + c * dxy), 1.0);
+    EXPECT_NEAR(in[q][0], snxx + c * dxx, 1e-12) << "r_factor " << rf << " theta " << th;
+    EXPECT_NEAR(in[q][1], snxy + c * dxy, 1e-12) << "r_factor " << rf << " theta " << th;
   }
-  // The same D with r halved: inside the ball the creep answer moves by half its increment.
-  const double rk1 = 0.5 * (2.0 * et + rh * a0dt * h2) / kappa;
-  const auto s1 = solve(0.5, 0.01 * theta / rk1, 0.0), s2 = solve(0.25, 0.01 * theta / rk1, 0.0);
-  EXPECT_NEAR(s1[0] - snxx, 0.01, 1e-12);
-  EXPECT_NEAR(s2[0] - snxx, 0.005, 1e-12);
+  EXPECT_GT(std::abs(in[1][0] - in[0][0]), 0.05);  // r doubled: a different step
+  EXPECT_NEAR(in[2][0], in[0][0], 1e-12);          // r and theta doubled: the same
+  EXPECT_NEAR(in[2][1], in[0][1], 1e-12);
+  // On the yield surface: a large strain rate not parallel to S^n.
+  for (const auto& pq : pairs) {
+    const double rf = pq[0], th = pq[1], Dxx = 5.0, Dxy = 3.0;
+    const auto t = solve(rf, th, Dxx, Dxy);
+    const double ax = th * snxx + rk(rf) * Dxx, ay = th * snxy + rk(rf) * Dxy;
+    const double n = std::hypot(ax, ay);
+    EXPECT_NEAR(t[0], ax / n, 1e-12) << "r_factor " << rf << " theta " << th;
+    EXPECT_NEAR(t[1], ay / n, 1e-12) << "r_factor " << rf << " theta " << th;
+  }
 }
