@@ -850,6 +850,26 @@ def b_open_choices(R):
     return L
 
 
+def same_ratio_text(R):
+    """Case A at n = 64 with r and theta both scaled, r / theta kept at the case files' value."""
+    runs = [("a_n64_rf0.5", 0.5, 10), ("a_n64_rf0.25_theta5", 0.25, 5),
+            ("a_n64_rf0.125_theta2.5", 0.125, 2.5)]
+    ok = [(R[k], rf, th) for k, rf, th in runs if R[k].ok]
+    if len(ok) < 2:
+        return ""
+    return (" With r/θ kept at the case files' value and r and θ both smaller (r_factor, "
+            "θ/δt = " + ", ".join(f"({rf}, {th:g})" for _, rf, th in ok) + "; `"
+            + "`, `".join(r.name for r, _, _ in ok[1:]) + "`), the peak is "
+            + ", ".join(f"{r.v('max_p_granular_ratio'):.3f}" for r, _, _ in ok)
+            + " and the runout " + ", ".join(f"{r.v('runout_m'):.3f}" for r, _, _ in ok)
+            + " m" + (f", against {R['a_n64_rf0.25'].v('max_p_granular_ratio'):.3f} with r alone "
+                      f"halved and {R['a_n64_theta3'].v('max_p_granular_ratio'):.3f} with θ alone "
+                      "at 3 δt" if R["a_n64_rf0.25"].ok and R["a_n64_theta3"].ok else "")
+            + ": r/θ is what matters, as the algebra says (the small remainder grows as θ "
+            "falls, and so do the fixed points stopped at their cap: " + ", ".join(
+                str(int(r.v("warnings_fp_capped_steps"))) for r, _, _ in ok) + " steps).")
+
+
 def augmentation_section(R):
     """The augmentation r of eq. 31: with theta > 0 the converged step depends on r / theta."""
     if not any(R[k].ok for k, _, _, rf in RF_RUNS if rf != 0.5):
@@ -926,7 +946,8 @@ def augmentation_section(R):
                  "and not in one direction: it is monotone in r at n = "
                  + (", ".join(str(n) for n, m in mono if m) or "none") + ", not at n = "
                  + ", ".join(str(n) for n, m in mono if not m) + where)
-              + "; the runout barely moves. " + late_speed_text(R) + " The peak sits in the "
+              + "; the runout barely moves. " + late_speed_text(R) + same_ratio_text(R)
+              + " The peak sits in the "
               "static basal wedge (see Known disagreements), where the rigid-plastic model "
               "leaves the stress undetermined and the scheme's r/θ, in the plastic stress and "
               "at the wall, takes part in fixing it. So whether max p ≤ ρ_s g H_c holds at a "

@@ -44,7 +44,8 @@ wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.frict
 # paper: "any r > 0"), 0.5 in the case files (the *_rf0.5 runs: the case files as they are now,
 # the bases of these studies); these runs take 0.125 and 0.25 instead (0.7 and 1
 # do not converge on case A: the fixed point oscillates in the first 20 steps). With theta > 0
-# the converged step depends on r / theta (docs/RHEOLOGY.md).
+# the converged step depends on r / theta (docs/RHEOLOGY.md); a_n64_rf*_theta* keep r / theta at
+# the case files' value with r and theta both smaller (made into /tmp and moved in).
 # Where HP's time error shows (a_hp_n64_dt1e-3_*, a_hp_n64_rf0.05): at the 1e-3 s cap, theta ten
 # times smaller, r_factor four times smaller, the stresses of an equilibrium start; at the paper's
 # 1e-4 s, r_factor ten times smaller (r about as at the cap). Made into /tmp and moved in.
@@ -108,6 +109,8 @@ RUNS=(
   "a_n128_rf0.5|full|4 min|$A|--set grid.n=128 --set rheology.r_factor=0.5"
   "b_n64_rf0.5|full|1 min|$B|--set grid.n=64 --set rheology.r_factor=0.5"
   "a_n64_rf0.25|full|1.5 min|$A|--set grid.n=64 --set rheology.r_factor=0.25"
+  "a_n64_rf0.25_theta5|full|1 min|$A|--set grid.n=64 --set rheology.r_factor=0.25 --set rheology.theta_per_dt=5"
+  "a_n64_rf0.125_theta2.5|full|1 min|$A|--set grid.n=64 --set rheology.r_factor=0.125 --set rheology.theta_per_dt=2.5"
   "a_n64_rf0.125|full|1.5 min|$A|--set grid.n=64 --set rheology.r_factor=0.125"
   "a_n128_rf0.25|full|6 min|$A|--set grid.n=128 --set rheology.r_factor=0.25"
   "a_n128_rf0.125|full|6 min|$A|--set grid.n=128 --set rheology.r_factor=0.125"
