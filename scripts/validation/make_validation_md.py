@@ -1899,7 +1899,15 @@ def main():
               f"; granflow's local back slopes ({min(local_slope(r, 0.0, 0.2) for r, _ in doneB):.1f}"
               f"–{max(local_slope(r, 0.0, 0.2) for r, _ in doneB):.1f}°) stay near or below α, "
               "where material that stopped flowing in shear ends" if doneB else "") +
-          ". That part, and the runout, are not explained. The "
+          ". The discrete model can hold steeper slopes at rest: the pile of "
+          "`cases/verify/dp_pile.toml` (α = 25.5°, bottom friction 25.5°, equilibrium start) "
+          "made 5 cm high with 29° sides, above α and above the infinite-slope limit of 28.5°, "
+          "stays at rest (granular speed at most 2.9e-4 m/s over 0.5 s, 5.5e-7 m/s at the end; "
+          "`granflow run cases/verify/dp_pile.toml --set initial.slope=29 --set "
+          "initial.height=0.05`; a finite pile, not an infinite slope). So slopes above α are "
+          "representable at rest here, and the back slope is what granflow's collapse leaves, "
+          "not a limit of the discretisation. That part, and the runout, "
+          "are not explained. The "
           "angle at the front is fitted over the last 2 cm, i.e. 1.4–3 cells at n ≤ 64 (not "
           "resolved; NaN where there are too few cells) and 5.6 / 11 cells at n = 128 / 256.",
           "- **Resolution.** The finest runs here against the paper's grids: case A "
