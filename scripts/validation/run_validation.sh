@@ -50,9 +50,10 @@ wall() { echo "--set boundary.bottom.friction_angle=$1 --set boundary.left.frict
 # times smaller, r_factor four times smaller, the stresses of an equilibrium start; at the paper's
 # 1e-4 s, r_factor ten times smaller (r about as at the cap). Made into /tmp and moved in.
 # Case B's sensitivity to what the paper does not fix (b_n64_theta*, b_n64_eps1.5, b_n64_mass,
-# with b_n64_rf* and b_n64_dt*): theta, the interface half-width eps (the paper does not give it;
-# 1.0 h in the case files), and where the yield stress and the wall friction act (the paper: where
-# phi < 0; "mass": also in the smeared band).
+# b_n128_eps1.5, b_n128_ri*, b_n128_r1, with b_n64_rf* and b_n64_dt*): theta, the interface
+# half-width eps (the paper does not give it; 1.0 h in the case files), the redistancing interval,
+# and where the yield stress and the wall friction act (the paper: where phi < 0; "mass", a
+# departure from it: also in the smeared band).
 # The time-step study (b_n64_dt*, a_n128_dt1e-4): the paper fixed dt = 1e-4 s (sections 4.1.3,
 # 4.2.2); the case files take dt from CFL 0.4 capped at 1e-3 s. Those runs cap dt at the paper's
 # value and keep the redistancing interval in seconds (every 50 steps of 1e-4 s = every 5 steps

@@ -177,9 +177,9 @@ Params case_params() {
              "+ rho a0 h^2/dt) / kappa^2, a local choice (the paper: any r > 0). With theta > 0 "
              "the converged step depends on r / theta: where S stays inside the yield surface "
              "the material deforms with D = theta (S - S^n) / (r kappa), like an elastic solid "
-             "that a larger r makes stiffer; the stresses there move with it (case A's peak granular pressure by "
-             "a few %, docs/VALIDATION.md \"Augmentation r\"). 1 oscillates on case A, 0.5 "
-             "converges.");
+             "that a larger r makes stiffer; the stresses there move with it (case A's peak "
+             "granular pressure by up to 6 %, docs/VALIDATION.md \"Augmentation r\"). 1 "
+             "oscillates on case A, 0.5 converges.");
   p.add_enum("rheology.plastic_grid", "cell", kPlasticGrids,
              "Where the plastic tensor S lives: cell = at the cell centres only, the shear rate "
              "there the mean of the four node shear rates (the paper, section 3.4); cell_node = "
