@@ -73,8 +73,9 @@ inline double mu_i_viscosity(const Params& pr, double Dnorm, double p, double rh
 // in eq. 29 (theta = 0), not in eq. 31: with the relaxation theta (S^n - S), a converged step
 // inside the yield surface has r kappa D = theta (S - S^n): it deforms like an elastic solid
 // whose stiffness grows with r / theta (test
-// Rheology.RelaxedProjectionFixedPointDependsOnROverTheta). The iteration S <- P(S + r kappa D(u~(S))) contracts fastest when r kappa^2 matches the inverse of
-// the compliance of D(u~) to the stress kappa S at the grid scale, which is of order
+// Rheology.RelaxedProjectionFixedPointDependsOnROverTheta). The iteration
+// S <- P(S + r kappa D(u~(S))) contracts fastest when r kappa^2 matches the inverse of the
+// compliance of D(u~) to the stress kappa S at the grid scale, which is of order
 // 1 / (2 eta + rho a0 h^2 / dt) (viscous and inertial parts of the prediction operator).
 inline double r_local(const Params& pr, double kappa, double eta, double rho_a0_h2_dt) {
   return kappa > 0 ? pr.r_factor * (2.0 * eta + rho_a0_h2_dt) / (kappa * kappa) : 0.0;
