@@ -129,6 +129,7 @@ RUNS=(
   "b_n128_ri5ms|full|6 min|$B|--set grid.n=128 --set levelset.redistance_interval=5e-3"
   "b_n128_ri1.5ms|full|6 min|$B|--set grid.n=128 --set levelset.redistance_interval=1.5e-3"
   "b_n128_r1|full|6 min|$B|--set grid.n=128 --set levelset.redistance_every=1"
+  "b_n256_r1|full|35-45 min|$B|--set grid.n=256 --set levelset.redistance_every=1"
   "b_n64_mass|full|1 min|$B|--set grid.n=64 --set rheology.yield_support=mass"
   "b_n64_dt2.5e-4|full|2.5 min|$B|--set grid.n=64 --set time.dt_max=2.5e-4 --set levelset.redistance_every=20"
   "b_n64_dt1e-4|full|5 min|$B|--set grid.n=64 --set time.dt_max=1e-4 --set levelset.redistance_every=50"
