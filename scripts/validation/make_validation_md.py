@@ -870,7 +870,10 @@ def b_open_choices(R):
                         f"{r1.v('slope_back_deg'):.1f}°)" for n, r1 in r1s)
                     + " (the paper bounds case A's volume loss by 0.84 %). The paper says only "
                     "that it redistances \"periodically in time\"; every 5 steps loses less "
-                    "volume. ")
+                    "volume. " + ("The effect shrinks as h falls: at the paper's grid even "
+                                  "redistancing every step leaves the runout "
+                                  f"{pct(rel(R['b_n256_r1'].v('runout_m'), B_RUNOUT_PAPER[15.0]))}"
+                                  " from the paper. " if R["b_n256_r1"].ok else ""))
     txt += (f"None moves the back slope by more than {max(slope_moves):.1f}° (the paper: 29°). "
             "The case files keep ε = 1.0 h, redistancing every 5 steps, r_factor = 0.5 and the "
             "paper's sharp support, for the reasons their comments give, not to approach the "
