@@ -748,14 +748,14 @@ def img(rel_path, alt):
 
 # ---- The report.
 def rest_speed(r):
-    """collapse.rest_speed of a run (m/s), from its case.toml (1e-3 if absent)."""
-    try:
-        for line in open(os.path.join(r.dir, "case.toml")):
-            if line.strip().startswith("rest_speed"):
-                return float(line.split("=")[1].split("#")[0])
-    except OSError:
-        pass
-    return 1e-3
+    """collapse.rest_speed of a run (m/s), from its resolved case.toml (1e-3 if absent)."""
+    return float(case_value(r, "collapse", "rest_speed", 1e-3))
+
+
+def peak_p_time(r):
+    """The output time (s) of a run's largest granular pressure."""
+    d = r.diag
+    return float(d["t"][int(np.argmax(d["max_p_granular"]))])
 
 
 def late_speed_text(R):
@@ -927,11 +927,9 @@ def augmentation_section(R):
         if not r.ok:
             rows.append([f"`{k}`", case, str(n), f"{rf}", r.status, r.make_cmd(), "", "", "", ""])
             continue
-        d = r.diag
-        ip = int(np.argmax(d["max_p_granular"]))
         pa, pe = (A_RUNOUT_PAPER, A_RUNOUT_EXP) if case == "A" else (B_RUNOUT_PAPER[15.0], B_RUNOUT_EXP)
         rows.append([f"`{k}`", case, str(n), f"{rf}", cell(r.v("runout_m"), pa, pe),
-                     f"{r.v('max_p_granular_ratio'):.3f} at {d['t'][ip]:.2f} s",
+                     f"{r.v('max_p_granular_ratio'):.3f} at {peak_p_time(r):.2f} s",
                      f"{r.v('slope_back_deg'):.1f} / {r.v('slope_front_deg'):.1f}",
                      f3(r.v("tf_s")), f"{r.v('volume_change_pct'):+.2f}",
                      str(int(r.v("warnings_fp_capped_steps")))])
@@ -944,7 +942,7 @@ def augmentation_section(R):
         if len(ok) < 2:
             continue
         pks = [r.v("max_p_granular_ratio") for _, r in ok]
-        tpk = [r.diag["t"][int(np.argmax(r.diag["max_p_granular"]))] for _, r in ok]
+        tpk = [peak_p_time(r) for _, r in ok]
         ro = [r.v("runout_m") for _, r in ok]
         txt.append(f"case {case} at n = {n}, r_factor = " + ", ".join(f"{rf}" for rf, _ in ok)
                    + ": peak granular pressure " + ", ".join(
@@ -1222,12 +1220,10 @@ def main():
         for k, th in THETA_RUNS:
             r = R[k]
             if r.ok:
-                d = r.diag
-                ip = int(np.argmax(d["max_p_granular"]))
                 rows.append([f"`{k}`", f"{th} δt", cell(r.v("runout_m"), A_RUNOUT_PAPER, A_RUNOUT_EXP),
                              cell(r.v("max_front_x_m"), A_RUNOUT_PAPER, A_RUNOUT_EXP),
                              f"{r.v('backwall_height_m'):.4f}", f3(r.v("tf_s")),
-                             f"{r.v('max_p_granular_ratio'):.3f} at {d['t'][ip]:.2f} s",
+                             f"{r.v('max_p_granular_ratio'):.3f} at {peak_p_time(r):.2f} s",
                              f"{r.v('volume_change_pct'):+.2f}",
                              str(int(r.v("warnings_fp_capped_steps")))])
             else:
