@@ -13,7 +13,6 @@
 #include <iostream>
 #include <sstream>
 
-#include "core/Case.hpp"
 #include "core/Error.hpp"
 #include "core/Version.hpp"
 #include "core/Log.hpp"
@@ -22,9 +21,11 @@
 #include "grid/Grid.hpp"
 #include "io/Checkpoint.hpp"
 #include "io/IoError.hpp"
-#include "sim/Setup.hpp"
+#include "setup/Build.hpp"
+#include "setup/Case.hpp"
+#include "setup/Report.hpp"
+#include "setup/Restart.hpp"
 #include "sim/Simulation.hpp"
-#include "stepper/Stepper.hpp"
 
 namespace {
 
@@ -84,7 +85,7 @@ int run_or_check(const Args& a, int argc_all, char** argv_all, int petsc_argc, c
   const std::string dir = a.restart_dir;
   if (restart) {
     // A restart may only change what does not alter the physics, the grid or the output
-    // schedule of the files it continues (core/Case.hpp, restart_changeable_keys).
+    // schedule of the files it continues (setup/Restart.hpp, restart_changeable_keys).
     const auto& ok = gf::restart_changeable_keys();
     std::string refused;
     for (const auto& k : set_keys(a.sets))
@@ -144,8 +145,8 @@ int run_or_check(const Args& a, int argc_all, char** argv_all, int petsc_argc, c
   gf::State state(grid);
   gf::initial_levelset(grid, c, state.phi);
   gf::initial_velocity(grid, c, state.vel, state.vel_old);
-  gf::Stepper stepper(grid, gf::physics_from_case(c));
-  gf::Simulation sim(grid, state, stepper, gf::run_from_case(c, out));
+  const auto stepper = gf::make_stepper(grid, c);
+  gf::Simulation sim(grid, state, *stepper, gf::run_from_case(c, out));
   sim.set_checkpoint_files({{"case.toml", c.resolved_toml}});
   if (restart) sim.restart(ckpt_dir, header);  // checks the grid and t_end, loads the fields
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The convergence of the fixed point of eq. 31 on collapse steps of case A (n = 64): runs
-# 3 steps with a cap of 400 iterations and -fp_monitor, once as the plain Picard iteration of
-# the paper (-fp_anderson 0) and once with the default Anderson acceleration (depth 5); writes
+# 3 steps with a cap of 400 iterations and rheology.fp_monitor, once as the plain Picard
+# iteration of the paper (rheology.anderson_depth = 0) and once with the default Anderson
+# acceleration (depth 5); writes
 # the change per iteration to docs/fp_convergence.csv and docs/figures/fp_convergence.png.
 # usage: scripts/fp_convergence.sh [build dir]
 set -euo pipefail
@@ -14,7 +15,7 @@ echo "anderson,step,iteration,change,du_max_mps,u_max_mps" > "$root/docs/fp_conv
 for m in 0 5; do
   "$build/granflow" run "$root/cases/ar07_rough.toml" --out "$tmp/run$m" --set time.max_steps=3 \
     --set rheology.fp_max_iter=400 --set rheology.fp_tol=1e-8 --set output.vtk_interval=0 \
-    -- -fp_monitor -fp_anderson $m > "$tmp/log$m" 2>&1
+    --set rheology.fp_monitor=true --set rheology.anderson_depth=$m > "$tmp/log$m" 2>&1
   awk -v m=$m '/fixed point step/ {gsub(/[()]/,""); print m","$4","$6","$8","$10","$14}' "$tmp/log$m" \
     >> "$root/docs/fp_convergence.csv"
 done

@@ -14,7 +14,7 @@
 // validated the same way; their messages name the item, e.g. `probe[2].x1` (numbered from 1).
 //
 // Values are looked up by string only while the case is read; solvers use the plain struct
-// CaseConfig (core/Case.hpp) filled from here once.
+// CaseConfig (setup/Case.hpp) filled from here once.
 #include <array>
 #include <cstddef>
 #include <functional>

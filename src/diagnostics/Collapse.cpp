@@ -11,7 +11,7 @@
 
 #include "core/Error.hpp"
 #include "diagnostics/Diagnostics.hpp"
-#include "diagnostics/LocalArray.hpp"
+#include "grid/Local.hpp"
 #include "io/IoError.hpp"
 
 namespace gf::diag {

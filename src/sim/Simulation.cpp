@@ -21,7 +21,7 @@
 
 namespace gf {
 
-Simulation::Simulation(const Grid& g, State& s, Stepper& stepper, const RunConfig& rc)
+Simulation::Simulation(const Grid& g, State& s, TimeStepper& stepper, const RunConfig& rc)
     : g_(g), s_(s), stepper_(stepper), rc_(rc), phi0_(g.dm_cell(), "phi0") {}
 
 double Simulation::choose_dt(double umax, double dt_prev) const {
@@ -32,11 +32,11 @@ double Simulation::choose_dt(double umax, double dt_prev) const {
     const double h = std::min(g_.hx(), g_.hy());
     dt = rc_.dt_max;
     if (umax > 0) dt = std::min(dt, rc_.cfl * h / umax);
-    const auto& gr = stepper_.config().gravity;
+    const auto& gr = stepper_.traits().gravity;
     const double gmag = std::hypot(gr[0], gr[1]);
     // A fluid starting from rest accelerates by |g|: it must not cross more than a cell
     // fraction in one step (sqrt(h/|g|) is the time to fall one cell from rest, times sqrt 2).
-    if (gmag > 0 && stepper_.config().prescribed == PrescribedFlow::None)
+    if (gmag > 0 && stepper_.traits().solves_momentum)
       dt = std::min(dt, rc_.cfl * std::sqrt(h / gmag));
     if (dt_prev > 0) dt = std::min(dt, 1.2 * dt_prev);
     else if (rc_.dt > 0) dt = std::min(dt, rc_.dt);
@@ -139,10 +139,10 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("vtk.count", static_cast<long long>(ve.size()));
   for (std::size_t k = 0; k < ve.size(); ++k)
     h.set_text("vtk." + std::to_string(k), hex(ve[k].first) + " " + ve[k].second);
-  const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
+  const ModelTraits& tr = stepper_.traits();
   prof::Scope pscope(prof::Checkpoint);
   io::write_checkpoint(g_.comm(), rc_.out_dir, std::move(h),
-                       checkpoint_fields(s_, phi0_, prescribed, stepper_.config().rheo.node_copy), ckpt_files_);
+                       checkpoint_fields(s_, phi0_, tr.returns_to_start, tr.node_copy), ckpt_files_);
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;
   if (g_.rank() == 0)
@@ -237,8 +237,9 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
       throw io::IoError(src + ": malformed entry vtk." + std::to_string(k) + " '" + v + "'");
     vtk_entries_.emplace_back(te, v.substr(sp + 1));
   }
-  const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
-  io::read_checkpoint_fields(g_.comm(), ckpt_dir, h, checkpoint_fields(s_, phi0_, prescribed, stepper_.config().rheo.node_copy));
+  const ModelTraits& tr = stepper_.traits();
+  io::read_checkpoint_fields(g_.comm(), ckpt_dir, h,
+                             checkpoint_fields(s_, phi0_, tr.returns_to_start, tr.node_copy));
   restarted_ = true;
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;
@@ -251,7 +252,7 @@ RunSummary Simulation::run() {
   const bool root = g_.rank() == 0;
   if (root) fs::create_directories(rc_.out_dir);
   MPI_Barrier(g_.comm());
-  const auto& cfg = stepper_.config();
+  const ModelTraits& cfg = stepper_.traits();
   seg_t0_ = wall_now();
 
   const std::vector<std::string> columns = {
@@ -267,7 +268,7 @@ RunSummary Simulation::run() {
                          restarted_ ? probe_bytes_ : std::vector<long long>{});
   // Column-collapse measures and their files (profiles.csv, structure.csv, deposit.csv); a
   // restart restores their history and continues the files from the checkpoint.
-  diag::CollapseMonitor collapse(g_, rc_.collapse, rc_.out_dir, cfg.levelset,
+  diag::CollapseMonitor collapse(g_, rc_.collapse, rc_.out_dir, cfg.two_phase,
                                  restarted_ ? &restart_header_ : nullptr);
   collapse_ = &collapse;
   struct Unset {
@@ -298,9 +299,9 @@ RunSummary Simulation::run() {
   // Cell-centred velocity (2 interleaved components, reusing the dm_vel layout) and |u|.
   Field ucell(g_.dm_vel(), "u_cell"), speed(g_.dm_cell(), "speed");
 
-  const double eps = cfg.levelset ? cfg.eps : 0.0;
+  const double eps = cfg.two_phase ? cfg.eps : 0.0;
   auto volume = [&]() {
-    return cfg.levelset ? diag::granular_volume(g_, s_.phi, eps) : g_.box().Lx * g_.box().Ly;
+    return cfg.two_phase ? diag::granular_volume(g_, s_.phi, eps) : g_.box().Lx * g_.box().Ly;
   };
   RunSummary sum;
 
@@ -333,7 +334,7 @@ RunSummary Simulation::run() {
     lp_.volume_change_pct = vchange;
     // Mass conservation is not exact with a level set: a drift beyond the threshold is a
     // warning (counted in summary.json), said once.
-    if (cfg.levelset && std::abs(vchange) > rc_.volume_warn_pct) {
+    if (cfg.two_phase && std::abs(vchange) > rc_.volume_warn_pct) {
       if (lp_.volume_warn_rows == 0 && root)
         log::message("granflow: warning: the granular volume has changed by " + num(vchange) +
                      " % at t = " + num(s_.t) + " s (beyond output.volume_warn_pct = " +
@@ -353,7 +354,7 @@ RunSummary Simulation::run() {
                       {"D_norm", dnorm, 1}, {"S_norm", snorm, 1}, {"yielded", yielded, 1},
                       {"kappa", stepper_.kappa(), 1}});
   };
-  const bool prescribed = cfg.prescribed != PrescribedFlow::None;
+  const bool prescribed = !cfg.solves_momentum;
   auto write_summary = [&](const std::string& status, const std::string& message) {
     sum.steps = s_.step;
     sum.t_end = s_.t;
@@ -409,7 +410,7 @@ RunSummary Simulation::run() {
     if (last_ckpt_step_ >= 0)
       js.set("checkpoint_t", last_ckpt_t_).set("checkpoint_step", last_ckpt_step_);
     if (!message.empty()) js.set("message", message);
-    if (prescribed && cfg.levelset) {
+    if (cfg.returns_to_start && cfg.two_phase) {
       // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
       const double a0 = levelset::granular_area(g_, phi0_, 0.0);
       const double a1 = levelset::granular_area(g_, s_.phi, 0.0);
@@ -453,16 +454,14 @@ RunSummary Simulation::run() {
     if (rc_.stress_equilibrium && !prescribed) {
       const double dt0 = choose_dt(0.0, 0.0);
       try {
-        const double eps = stepper_.config().eps;
+        const double eps = cfg.eps;
         const auto [n, speed] = stepper_.equilibrate(
             s_, dt0, rc_.stress_max_steps, rc_.stress_tol,
             [&, k = 0](const State& st) mutable {
               const double v = diag::max_granular_speed(g_, st.vel, st.phi, eps);
-              if (++k % 50 == 0 && g_.rank() == 0) {
-                std::printf("granflow: initial stress: pseudo-step %d, granular speed %s m/s\n",
-                            k, num(v).c_str());
-                std::fflush(stdout);
-              }
+              if (++k % 50 == 0 && g_.rank() == 0)
+                log::message("granflow: initial stress: pseudo-step " + std::to_string(k) +
+                             ", granular speed " + num(v) + " m/s");
               return v;
             });
         lp_.stress_steps = n;
@@ -471,19 +470,17 @@ RunSummary Simulation::run() {
         fail(std::string(e.what()) +
              " (in the initial stress, initial.stress = \"equilibrium\")");
       }
-      if (g_.rank() == 0) {
-        std::printf(
-            "granflow: initial stress: %lld pseudo-steps of %s s, the last one made %s m/s%s\n",
-            lp_.stress_steps, num(dt0).c_str(), num(lp_.stress_speed).c_str(),
-            lp_.stress_speed < rc_.stress_tol
-                ? ""
-                : " (WARNING: above initial.stress_tol: no equilibrium reached)");
-        std::fflush(stdout);
-      }
+      if (g_.rank() == 0)
+        log::message("granflow: initial stress: " + std::to_string(lp_.stress_steps) +
+                     " pseudo-steps of " + num(dt0) + " s, the last one made " +
+                     num(lp_.stress_speed) + " m/s" +
+                     (lp_.stress_speed < rc_.stress_tol
+                          ? ""
+                          : " (WARNING: above initial.stress_tol: no equilibrium reached)"));
     }
     // A prescribed flow that returns the interface to its start (one turn, a reversed vortex)
     // has the initial level set as exact answer: keep it for the interface error at the end.
-    if (prescribed) GF_PETSC(VecCopy(s_.phi, phi0_));
+    if (cfg.returns_to_start) GF_PETSC(VecCopy(s_.phi, phi0_));
     lp_.vol0 = volume();
     write_diag();
     write_vtk();
@@ -551,7 +548,8 @@ RunSummary Simulation::run() {
            " (above rheology.fp_fail_change = " + num(rc_.fp_fail_change) + "; a sign flip of S "
            "or s_t is a change of 2), at " + when() + " (dt = " + num(dt) +
            " s): try a smaller rheology.r_factor (the augmentation), a smaller time step, or "
-           "a wider interface (levelset.eps_cells); -fp_monitor prints every iteration");
+           "a wider interface (levelset.eps_cells); --set rheology.fp_monitor=true logs every "
+           "iteration");
     const diag::SpeedAt sp = diag::max_speed_at(g_, s_.vel);
     umax = sp.speed;
     if (umax > rc_.max_speed)

@@ -27,7 +27,7 @@
 #include "io/Csv.hpp"
 #include "io/Probes.hpp"
 #include "io/Vtk.hpp"
-#include "stepper/Stepper.hpp"
+#include "stepper/TimeStepper.hpp"
 
 namespace gf {
 
@@ -63,7 +63,7 @@ struct RunSummary {
 
 class Simulation {
  public:
-  Simulation(const Grid& g, State& s, Stepper& stepper, const RunConfig& rc);
+  Simulation(const Grid& g, State& s, TimeStepper& stepper, const RunConfig& rc);
   // Text files stored in every checkpoint folder (name, content), e.g. the resolved case,
   // which a restart compares with the case it is given.
   void set_checkpoint_files(std::vector<std::pair<std::string, std::string>> files) {
@@ -114,7 +114,7 @@ class Simulation {
 
   const Grid& g_;
   State& s_;
-  Stepper& stepper_;
+  TimeStepper& stepper_;
   RunConfig rc_;
   Loop lp_;
   std::vector<std::pair<std::string, std::string>> ckpt_files_;

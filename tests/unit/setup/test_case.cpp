@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "core/Case.hpp"
+#include "setup/Case.hpp"
+#include "setup/Report.hpp"
+#include "setup/Restart.hpp"
 #include "core/Error.hpp"
 
 namespace fs = std::filesystem;

@@ -18,7 +18,7 @@
 
 #include <vector>
 
-namespace gf {
+namespace gf::linsolve {
 
 class Anderson {
  public:
@@ -52,4 +52,4 @@ class Anderson {
   std::vector<double> gram_;
 };
 
-}  // namespace gf
+}  // namespace gf::linsolve
