@@ -1,7 +1,7 @@
 #pragma once
 // The typed parameter registry behind case files.
 //
-// Every parameter is declared ONCE (core/Case.cpp: case_params()) with its dotted key, type,
+// Every parameter is declared ONCE (setup/Schema.cpp: case_params()) with its dotted key, type,
 // SI unit, default, allowed range and help text. From that single declaration the registry
 //   * loads a TOML file and `--set key=value` overrides (the override wins),
 //   * validates every value and collects ALL problems before reporting them, each naming the

@@ -92,8 +92,6 @@ class Redistancer {
   // (1 - cos(a/2) for two fronts meeting at an angle a: 0.009 at the 15 deg slopes of a pile,
   // 0.29 at a right-angled corner).
   double distance_defect(Vec phi);
-  int last_iterations() const { return last_iters_; }
-  int iterations() const { return iters_; }
 
  private:
   const Grid& g_;

@@ -1,6 +1,9 @@
 #include "setup/Restart.hpp"
 
 #include <algorithm>
+#include <filesystem>
+
+#include "core/Error.hpp"
 #include <map>
 #include <sstream>
 
@@ -74,6 +77,50 @@ std::vector<std::string> case_differences(const std::string& checkpoint_toml,
   for (const auto& [k, v] : b)
     if (!skip(k) && !value(a, k)) diffs.push_back(k + ": absent at the checkpoint, " + v + " now");
   return diffs;
+}
+
+namespace {
+// The keys of --set arguments ("key=value"); a malformed one is left to load_case to report.
+std::vector<std::string> set_keys(const std::vector<std::string>& sets) {
+  std::vector<std::string> keys;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq != std::string::npos) keys.push_back(s.substr(0, eq));
+  }
+  return keys;
+}
+}  // namespace
+
+void check_restart_request(const std::string& dir, const std::vector<std::string>& sets) {
+  // A restart may only change what does not alter the physics, the grid or the output
+  // schedule of the files it continues.
+  const auto& ok = restart_changeable_keys();
+  std::string refused;
+  for (const auto& k : set_keys(sets))
+    if (std::find(ok.begin(), ok.end(), k) == ok.end()) refused += (refused.empty() ? "" : ", ") + k;
+  if (!refused.empty()) {
+    std::string allowed;
+    for (const auto& k : ok) allowed += (allowed.empty() ? "" : ", ") + k;
+    throw InputError("--restart " + dir + ": --set " + refused +
+                     ": a restart continues the same physics on the same grid with the "
+                     "same output schedule; it may only change " + allowed +
+                     ". Start a new run (--out) to change anything else");
+  }
+  if (!std::filesystem::is_regular_file(dir + "/case.toml"))
+    throw InputError("--restart " + dir + ": not a granflow output folder (no " + dir +
+                     "/case.toml)");
+}
+
+void check_restart_case(const std::string& dir, const std::string& ckpt_dir,
+                        const std::string& checkpoint_toml, const std::string& now_toml) {
+  const auto diffs = case_differences(checkpoint_toml, now_toml, restart_changeable_keys());
+  if (diffs.empty()) return;
+  std::string m = "--restart " + dir + ": the case differs from the one the checkpoint (" +
+                  ckpt_dir + ") was written with:";
+  for (const auto& d : diffs) m += "\n  " + d;
+  m += "\nA restart continues the same case; only " + std::string("time.*, output.checkpoint_*, "
+       "output.progress_interval, output.volume_warn_pct and solver.petsc_options may change");
+  throw InputError(m);
 }
 
 }  // namespace gf

@@ -18,4 +18,12 @@ std::vector<std::string> case_differences(const std::string& checkpoint_toml,
                                           const std::string& now_toml,
                                           const std::vector<std::string>& ignore);
 
+// InputError unless every --set of a restart of `dir` is a restart_changeable_keys() key and
+// `dir` is an output folder (it has a case.toml).
+void check_restart_request(const std::string& dir, const std::vector<std::string>& sets);
+// InputError listing the differences unless the resolved case now is the checkpoint's but for
+// the restart_changeable_keys().
+void check_restart_case(const std::string& dir, const std::string& ckpt_dir,
+                        const std::string& checkpoint_toml, const std::string& now_toml);
+
 }  // namespace gf

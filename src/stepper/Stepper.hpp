@@ -70,10 +70,6 @@ class Stepper : public TimeStepper {
   // Returns the pseudo-steps taken and the speed after the last one. Collective.
   std::pair<int, double> equilibrate(State& s, double dt, int max_steps, double tol,
                                      const std::function<double(const State&)>& speed) override;
-  // rho, eta (cells) and eta at the nodes from phi (step 2); public for diagnostics and tests.
-  void update_properties(State& s);
-  Vec eta_node() const { return eta_node_; }
-  const PhysicsConfig& config() const { return cfg_; }
 
  private:
   const Grid& g_;
@@ -95,6 +91,8 @@ class Stepper : public TimeStepper {
   // Step 2: everything the coming step derives from phi^{n+1}, p^n and u^n. props_change: the
   // properties change (two phases, mu(I), the first step).
   void update_derived(State& s, bool props_change);
+  // rho, eta (cells) and eta at the nodes from phi, and the mu(I) viscosity.
+  void update_properties(State& s);
   void mu_i_viscosity(State& s);
   // kappa (eqs. 15, 18-19) from phi^{n+1} and p^n, kappa_b (eq. 22) from the state at t^n, and
   // the granular mask of the fixed point.
