@@ -34,10 +34,8 @@ FixedPointStats FixedPoint::solve(State& s, const PlasticInputs& in, Vec rhs0, V
   FixedPointStats st;
   GF_PETSC(VecCopy(s.S, S_n_));
   GF_PETSC(VecCopy(s.s_wall, sw_n_));
-  const bool node = rheo_.node_copy;
-  if (node) GF_PETSC(VecCopy(s.S_node, Sn_n_));
+  if (rheo_.node_copy) GF_PETSC(VecCopy(s.S_node, Sn_n_));
   if (anderson_) anderson_->set_active(anderson_active(in.kappa));
-  boundary::CoulombWalls& walls = pred_.walls();
   // The plastic terms and D(u~) only where the granular phase is (kappa > 0 or phi < 0),
   // widened by 2 cells for the stencils of the faces, nodes and wall extrapolations around
   // it: in case A that is 20-50 % of the domain.
@@ -45,61 +43,18 @@ FixedPointStats FixedPoint::solve(State& s, const PlasticInputs& in, Vec rhs0, V
     Predictor& p;
     ~RegionGuard() { p.clear_plastic_region(); }
   } region_guard{pred_};
-  if (walls.active()) walls.cache_inputs(s.p, in.kappa, s.eta);
+  if (pred_.walls().active()) pred_.walls().cache_inputs(s.p, in.kappa, s.eta);
   set_plastic_region(in.granular);
-  const bool track_u = opt_.monitor || rheo_.fp_tol_u > 0;
   double last_ch = std::numeric_limits<double>::infinity();
   for (int k = 1; k <= rheo_.fp_max_iter; ++k) {
     // 1. The viscous solve with the current S and s_t.
-    GF_PETSC(VecCopy(rhs0, rhs_));
-    {
-      prof::Scope ps(prof::Plastic);
-      pred_.add_plastic(in.kappa, s.S, in.kappa_b, s.s_wall, rhs_, node ? s.S_node.vec() : nullptr);
-    }
-    if (track_u) GF_PETSC(VecCopy(u_tilde, u_prev_));
-    {
-      prof::Scope ps(prof::ViscousSolve);
-      // From the second iteration on, only the plastic terms change the right-hand side.
-      if (k == 2 && opt_.local_margin > 0) {
-        // Not worth it when R is most of the domain (a one-phase run: all of it).
-        std::vector<PetscInt> rows = local_rows(in.granular, opt_.local_margin);
-        PetscInt n[2] = {static_cast<PetscInt>(rows.size()), 0}, tot[2];
-        GF_PETSC(VecGetLocalSize(u_tilde, &n[1]));
-        MPI_Allreduce(n, tot, 2, MPIU_INT, MPI_SUM, g_.comm());
-        if (tot[0] < 0.7 * tot[1]) pred_.begin_local(rows, rhs_, u_tilde);
-      }
-      st.visc_its += pred_.local_active() ? pred_.solve_local(rhs_, u_tilde)
-                                          : pred_.solve(rhs_, u_tilde);
-    }
-    PetscReal du = 0, un = 0;
-    if (track_u) {
-      GF_PETSC(VecAXPY(u_prev_, -1.0, u_tilde));
-      GF_PETSC(VecNorm(u_prev_, NORM_INFINITY, &du));
-      GF_PETSC(VecNorm(u_tilde, NORM_INFINITY, &un));
-    }
+    double du = 0, umax = 0;
+    st.visc_its += viscous_solve(s, in, rhs0, u_tilde, k, du, umax);
     // 2. G(x): the projections of eq. 31 applied to the current iterate x = (S, s_t).
-    double ch;
-    {
-      prof::Scope ps(prof::Plastic);
-      pred_.strain_rate(u_tilde, s.eta, D_, node ? Dn_ : nullptr);
-      GF_PETSC(VecCopy(s.S, gS_));
-      GF_PETSC(VecCopy(s.s_wall, gW_));
-      ch = rheology::update_plastic(g_, rheo_, gS_, S_n_, in.kappa, D_, in.rho_r, in.eta_r, a0dt,
-                                    theta);
-      if (node) {
-        GF_PETSC(VecCopy(s.S_node, gSn_));
-        ch = std::max(ch, rheology::update_plastic_node(g_, rheo_, gSn_, Sn_n_, in.kappa, Dn_,
-                                                        in.rho_r, in.eta_r, a0dt, theta));
-      }
-      if (walls.active()) {
-        walls.yield(s.p, gS_, in.kappa, D_, s.eta, in.kappa_b);
-        ch = std::max(ch, walls.update(u_tilde, in.kappa_b, gW_, sw_n_, s.rho, s.eta, a0dt, theta,
-                                       rheo_.r_factor));
-      }
-    }
+    const double ch = project(s, in, u_tilde, a0dt, theta);
     st.iters = k;
     st.change = ch;
-    if (opt_.monitor) report(step, k, ch, du, un, s.S);
+    if (opt_.monitor) report(step, k, ch, du, umax, s.S);
     // 3. Converged? Safeguard: the projections make the map non-smooth (active sets change);
     // when the residual grows, the extrapolation is dropped (history reset) and the plain step
     // taken.
@@ -111,28 +66,15 @@ FixedPointStats FixedPoint::solve(State& s, const PlasticInputs& in, Vec rhs0, V
       if (anderson_ && grew) anderson_->reset();
       GF_PETSC(VecCopy(gS_, s.S));
       GF_PETSC(VecCopy(gW_, s.s_wall));
-      if (node) GF_PETSC(VecCopy(gSn_, s.S_node));
+      if (rheo_.node_copy) GF_PETSC(VecCopy(gSn_, s.S_node));
       if (done) {
         st.converged = true;
         break;
       }
       continue;
     }
-    // 4. Anderson mixing of the last iterates, then back into |S| <= 1, |s_t| <= 1.
-    prof::Scope ps(prof::Anderson);
-    if (node) {
-      anderson_->update({s.S, s.s_wall, s.S_node}, {gS_, gW_, gSn_});
-      rheology::project_field_node(g_, s.S_node, in.kappa);
-    } else {
-      anderson_->update({s.S, s.s_wall}, {gS_, gW_});
-    }
-    rheology::project_field(g_, s.S, in.kappa);
-    PetscInt n;
-    PetscScalar* w;
-    GF_PETSC(VecGetLocalSize(s.s_wall, &n));
-    GF_PETSC(VecGetArray(s.s_wall, &w));
-    for (PetscInt q = 0; q < n; ++q) w[q] = boundary::project_b(w[q]);
-    GF_PETSC(VecRestoreArray(s.s_wall, &w));
+    // 4. The next iterate from the last ones.
+    accelerate(s, in);
   }
   if (pred_.local_active()) {
     // The full system for the last S and s_t: what the frozen rows missed (a residual below
@@ -143,6 +85,82 @@ FixedPointStats FixedPoint::solve(State& s, const PlasticInputs& in, Vec rhs0, V
     st.visc_its += st.visc_polish_its;
   }
   return st;
+}
+
+int FixedPoint::viscous_solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u_tilde, int k,
+                              double& du, double& umax) {
+  const bool node = rheo_.node_copy;
+  GF_PETSC(VecCopy(rhs0, rhs_));
+  {
+    prof::Scope ps(prof::Plastic);
+    pred_.add_plastic(in.kappa, s.S, in.kappa_b, s.s_wall, rhs_, node ? s.S_node.vec() : nullptr);
+  }
+  const bool track_u = opt_.monitor || rheo_.fp_tol_u > 0;
+  if (track_u) GF_PETSC(VecCopy(u_tilde, u_prev_));
+  int its;
+  {
+    prof::Scope ps(prof::ViscousSolve);
+    // From the second iteration on, only the plastic terms change the right-hand side.
+    if (k == 2 && opt_.local_margin > 0) {
+      // Not worth it when R is most of the domain (a one-phase run: all of it).
+      std::vector<PetscInt> rows = local_rows(in.granular, opt_.local_margin);
+      PetscInt n[2] = {static_cast<PetscInt>(rows.size()), 0}, tot[2];
+      GF_PETSC(VecGetLocalSize(u_tilde, &n[1]));
+      MPI_Allreduce(n, tot, 2, MPIU_INT, MPI_SUM, g_.comm());
+      if (tot[0] < 0.7 * tot[1]) pred_.begin_local(rows, rhs_, u_tilde);
+    }
+    its = pred_.local_active() ? pred_.solve_local(rhs_, u_tilde) : pred_.solve(rhs_, u_tilde);
+  }
+  if (track_u) {
+    PetscReal d, u;
+    GF_PETSC(VecAXPY(u_prev_, -1.0, u_tilde));
+    GF_PETSC(VecNorm(u_prev_, NORM_INFINITY, &d));
+    GF_PETSC(VecNorm(u_tilde, NORM_INFINITY, &u));
+    du = d;
+    umax = u;
+  }
+  return its;
+}
+
+double FixedPoint::project(State& s, const PlasticInputs& in, Vec u_tilde, double a0dt,
+                           double theta) {
+  prof::Scope ps(prof::Plastic);
+  const bool node = rheo_.node_copy;
+  pred_.strain_rate(u_tilde, s.eta, D_, node ? Dn_ : nullptr);
+  GF_PETSC(VecCopy(s.S, gS_));
+  GF_PETSC(VecCopy(s.s_wall, gW_));
+  double ch = rheology::update_plastic(g_, rheo_, gS_, S_n_, in.kappa, D_, in.rho_r, in.eta_r,
+                                       a0dt, theta);
+  if (node) {
+    GF_PETSC(VecCopy(s.S_node, gSn_));
+    ch = std::max(ch, rheology::update_plastic_node(g_, rheo_, gSn_, Sn_n_, in.kappa, Dn_,
+                                                    in.rho_r, in.eta_r, a0dt, theta));
+  }
+  boundary::CoulombWalls& walls = pred_.walls();
+  if (walls.active()) {
+    walls.yield(s.p, gS_, in.kappa, D_, s.eta, in.kappa_b);
+    ch = std::max(ch, walls.update(u_tilde, in.kappa_b, gW_, sw_n_, s.rho, s.eta, a0dt, theta,
+                                   rheo_.r_factor));
+  }
+  return ch;
+}
+
+void FixedPoint::accelerate(State& s, const PlasticInputs& in) {
+  // Anderson mixing of the last iterates, then back into |S| <= 1, |s_t| <= 1.
+  prof::Scope ps(prof::Anderson);
+  if (rheo_.node_copy) {
+    anderson_->update({s.S, s.s_wall, s.S_node}, {gS_, gW_, gSn_});
+    rheology::project_field_node(g_, s.S_node, in.kappa);
+  } else {
+    anderson_->update({s.S, s.s_wall}, {gS_, gW_});
+  }
+  rheology::project_field(g_, s.S, in.kappa);
+  PetscInt n;
+  PetscScalar* w;
+  GF_PETSC(VecGetLocalSize(s.s_wall, &n));
+  GF_PETSC(VecGetArray(s.s_wall, &w));
+  for (PetscInt q = 0; q < n; ++q) w[q] = boundary::project_b(w[q]);
+  GF_PETSC(VecRestoreArray(s.s_wall, &w));
 }
 
 void FixedPoint::report(long long step, int k, double ch, double du, double un, Vec S) const {

@@ -93,6 +93,16 @@ class FixedPoint {
   // The rows of a dm_vel global Vec (local indices, ascending) of the granular cells widened by
   // margin cells (a box in the cell indices), for Predictor::begin_local.
   std::vector<PetscInt> local_rows(Vec granular, int margin) const;
+  // Step 1 of iteration k: the viscous solve with the current S and s_t (the local solves from
+  // k = 2 on); du, umax: the change of u~ and its largest value when they are tracked.
+  // Returns the KSP iterations.
+  int viscous_solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u_tilde, int k, double& du,
+                    double& umax);
+  // Step 2: G(x) into gS_, gW_ (gSn_): the projections of eq. 31 with kappa_b refreshed.
+  // Returns the change max |G(x) - x|.
+  double project(State& s, const PlasticInputs& in, Vec u_tilde, double a0dt, double theta);
+  // Step 4: Anderson mixing of the iterates into s.S, s.s_wall (s.S_node), re-projected.
+  void accelerate(State& s, const PlasticInputs& in);
   // The monitor line of iteration k: the change, the velocity change, and the root-mean-square
   // change of S over the cells where it changed by more than 1e-12 and how many they are.
   void report(long long step, int k, double change, double du, double umax, Vec S) const;

@@ -27,8 +27,10 @@ std::string probe_name_rule(const std::string& s) {
 // paper (section 4.1: column 0.20 x 0.14 m in a 0.8 x 0.2 m box, rho_s = 1550, eta_0 = 0.5).
 // ------------------------------------------------------------------------------------------
 
-Params case_params() {
-  Params p;
+namespace {
+
+// The title, the domain, the grid and the time stepping.
+void declare_domain_time(Params& p) {
   p.add_string("title", "granflow case",
                "One line saying what this case is; copied to the output.");
 
@@ -60,7 +62,10 @@ Params case_params() {
              "A speed above this anywhere stops the run as blown up (exit code 4), before "
              "it turns into NaN: no flow of this solver (granular collapses, dam breaks: a "
              "few m/s) comes near it.");
+}
 
+// Gravity, the two phases and the rheology of the granular one with its fixed point (sections 2.1-2.2, 3.2-3.3).
+void declare_physics(Params& p) {
   p.add_real2("physics.gravity", "m/s^2", {0.0, -9.81}, Range::any(), "Gravity (gx, gy).");
 
   p.add_real("phase.granular.rho", "kg/m^3", 1550, Range::gt(0),
@@ -145,7 +150,10 @@ Params case_params() {
   p.add_bool("rheology.fp_monitor", false,
              "Fixed point of eq. 31: log one line per iteration (its change, the change of u~, "
              "how many values moved) to stderr and granflow.log, for convergence studies.");
+}
 
+// The level set (section 3.1).
+void declare_levelset(Params& p) {
   p.add_bool("levelset.enabled", true,
              "Two phases separated by the level set phi (< 0 granular, > 0 air). false: a "
              "single phase, phi ignored, the whole domain is the granular (heavy) fluid, "
@@ -187,7 +195,10 @@ Params case_params() {
             "Pseudo-time iterations per redistancing.");
   p.add_real("levelset.redistance_cfl", "", 0.5, Range::open_closed(0, 1),
              "CFL number of the redistancing pseudo-time steps.");
+}
 
+// The initial state and the prescribed flows of the level-set benchmarks.
+void declare_initial(Params& p) {
   p.add_enum("initial.shape", "rectangle", kShapes,
              "Initial granular region (phi < 0): none; rectangle [x0, x1] x [y0, y1] (the "
              "column); layer 0 <= y <= height; circle (cx, cy, radius); zalesak: the circle "
@@ -248,7 +259,10 @@ Params case_params() {
   p.add_real("flow.cx", "m", 0.5, Range::any(), "rotation: centre x.");
   p.add_real("flow.cy", "m", 0.5, Range::any(), "rotation: centre y.");
   p.add_real("flow.period", "s", 8.0, Range::gt(0), "single_vortex: period T.");
+}
 
+// The walls (section 2.2).
+void declare_walls(Params& p) {
   for (const auto& side : kSides) {
     // The back wall (left) and the bottom are rough in the paper's column collapses: Navier
     // slip with eta_b = 1 (eq. 24); the open side and the top only bound the air.
@@ -274,7 +288,10 @@ Params case_params() {
              "boundary.right settings are then ignored (a non-zero friction_angle or velocity "
              "there is an error, any other setting a warning). The initial shapes must still "
              "lie inside the domain. For plane Poiseuille, inclined-layer and Bagnold flows.");
+}
 
+// The outputs and the column-collapse measures.
+void declare_output(Params& p) {
   p.add_real("output.interval", "s", 0.01, Range::gt(0),
              "Simulated time between diagnostics and probe samples.");
   p.add_real("output.vtk_interval", "s", 0.05, Range::ge(0),
@@ -321,7 +338,10 @@ Params case_params() {
   p.add_real("collapse.rest_speed", "m/s", 1e-3, Range::gt(0),
              "Stages: tf is the first output from which the max granular |u| (outside the "
              "smeared interface band) stays below this to the end of the run.");
+}
 
+// The linear solvers and the line probes.
+void declare_solver(Params& p) {
   p.add_real("solver.pressure_rtol", "", 1e-10, Range::open(0, 1),
              "Relative residual tolerance of the pressure solve (eq. 32).");
   p.add_real("solver.viscous_rtol", "", 1e-10, Range::open(0, 1),
@@ -350,6 +370,20 @@ Params case_params() {
                         "< 1 where rigid) and kappa (yield stress, Pa), all cell centred.");
   p.add_table_array("probe", std::move(probe),
                     "A line probe: samples fields along a segment every output.interval.");
+}
+
+}  // namespace
+
+
+Params case_params() {
+  Params p;
+  declare_domain_time(p);
+  declare_physics(p);
+  declare_levelset(p);
+  declare_initial(p);
+  declare_walls(p);
+  declare_output(p);
+  declare_solver(p);
   return p;
 }
 
