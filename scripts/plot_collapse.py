@@ -35,20 +35,18 @@ The reference numbers are those of ../shared/reference/paper_targets.md (the pap
 figures are not available as data, so no experimental curve is drawn, only its numbers).
 """
 import argparse
-import csv
-import json
 import math
 import os
-import struct
 import sys
-import tomllib
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import granflow_run as gr  # noqa: E402
 
 # ---- Reference numbers (paper_targets.md). Times in s, lengths in m, speeds in m/s.
 REFERENCES = {
@@ -94,73 +92,27 @@ REFERENCES = {
 }
 
 
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]} if rows else {}
+class Run(gr.Run):
+    """A two-phase run folder (granflow_run.Run) with the short names this script uses."""
 
-
-def read_vtr(path):
-    """granflow's RectilinearGrid files: appended raw data, UInt64 headers, Float64 values."""
-    raw = open(path, "rb").read()
-    head = raw.index(b"<AppendedData")
-    k = raw.index(b"_", head) + 1
-    root = ET.fromstring(raw[:head].decode() + "</VTKFile>")
-
-    def block(off):
-        n = struct.unpack_from("<Q", raw, k + off)[0]
-        return np.frombuffer(raw, dtype="<f8", count=n // 8, offset=k + off + 8)
-
-    arrays = {}
-    for da in root.iter("DataArray"):
-        if da.get("format") == "appended":
-            arrays[da.get("Name")] = (block(int(da.get("offset"))),
-                                      int(da.get("NumberOfComponents", "1")))
-    coords = next(root.iter("Coordinates"))
-    xn, yn = [block(int(da.get("offset"))) for da in coords.iter("DataArray")][:2]
-    nx, ny = len(xn) - 1, len(yn) - 1
-
-    def field(name):
-        a, nc = arrays[name]
-        return a.reshape(ny, nx) if nc == 1 else a.reshape(ny, nx, nc)
-    return xn, yn, field
-
-
-def pvd_files(out):
-    path = os.path.join(out, "fields.pvd")
-    if not os.path.exists(path):
-        return []
-    root = ET.parse(path).getroot()
-    return [(float(e.get("timestep")), os.path.join(out, e.get("file")))
-            for e in root.iter("DataSet")]
-
-
-class Run:
     def __init__(self, out):
+        super().__init__(out)
+        for name in ("case.toml", "summary.json", "diagnostics.csv", "profiles.csv"):
+            if not self.has(name):
+                raise FileNotFoundError(f"{out}: no {name}")
         self.out = out
-        with open(os.path.join(out, "case.toml"), "rb") as f:
-            self.case = tomllib.load(f)
-        self.diag = read_csv(os.path.join(out, "diagnostics.csv"))
-        with open(os.path.join(out, "summary.json")) as f:
-            self.summary = json.load(f)
-        self.prof = read_csv(os.path.join(out, "profiles.csv"))
-        p = os.path.join(out, "structure.csv")
-        self.struct = read_csv(p) if os.path.exists(p) else {}
-        p = os.path.join(out, "deposit.csv")
-        self.dep = read_csv(p) if os.path.exists(p) else {}
-        self.times = np.unique(self.prof["t"])
-        self.title = self.case.get("title", out)
+        self.diag, self.prof = self.diagnostics, self.profiles
+        self.struct, self.dep = self.structure, self.deposit  # empty where the file is missing
+        self.times = self.prof.times
         self.label = f"{self.summary.get('nx')} x {self.summary.get('ny')}"
 
     def profile(self, t):
         """(x, h) at the output time nearest to t."""
-        tt = self.times[np.argmin(np.abs(self.times - t))]
-        m = self.prof["t"] == tt
-        return tt, self.prof["x"][m], self.prof["h"][m]
+        p = self.prof.at(t, tol=None)
+        return p.times[0], p["x"], p["h"]
 
     def s(self, key):
-        v = self.summary.get(key)
-        return float("nan") if v is None else float(v)
+        return self.value(key)
 
 
 def which_case(case):
@@ -298,7 +250,7 @@ def plot_profile(run, others, ref, figs):
 
 
 def snapshot_times(run, ref, n=6):
-    files = pvd_files(run.out)
+    files = run.snapshots
     if not files:
         return []
     if ref and "snap_times" in ref:
@@ -331,11 +283,10 @@ def plot_snapshots(run, ref, figs, name, fname, label, log=False, cmap="viridis"
     vals = []
     data = []
     for t, f in snaps:
-        xn, yn, field = read_vtr(f)
-        phi = field("phi")
-        a = field(name)
-        a = np.ma.masked_where(phi >= 0, a)
-        data.append((t, xn, yn, phi, a))
+        fld = gr.read_vtr(f)
+        phi = fld["phi"]
+        a = fld.granular(name)
+        data.append((t, fld.xn, fld.yn, phi, a))
         if a.count():
             vals.append(a.compressed())
     if not vals:

@@ -11,11 +11,9 @@ usage: plot_run.py OUTDIR        (writes OUTDIR/figures/*.png)
   scripts/plot_collapse.py (collapse_*.png), with the paper's numbers when the run is one of
   its cases.
 """
-import csv
 import math
 import os
 import sys
-import tomllib
 
 import matplotlib
 
@@ -24,23 +22,16 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import granflow_run as gr  # noqa: E402
 import plot_collapse  # noqa: E402
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]} if rows else {}
 
 
 def main(out):
     figs = os.path.join(out, "figures")
     os.makedirs(figs, exist_ok=True)
-    case = {}
-    if os.path.exists(os.path.join(out, "case.toml")):
-        with open(os.path.join(out, "case.toml"), "rb") as f:
-            case = tomllib.load(f)
-    d = read_csv(os.path.join(out, "diagnostics.csv"))
+    run = gr.Run(out)
+    case = run.case
+    d = gr.read_csv(run.path("diagnostics.csv"))
     fig, ax = plt.subplots(2, 2, figsize=(10, 7))
     for a, (key, label) in zip(ax.flat, [("volume_change_pct", "granular volume change (%)"),
                                          ("max_speed", "max |u| (m/s)"),
