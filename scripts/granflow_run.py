@@ -276,6 +276,8 @@ def read_csv(path, units=None, missing_ok=False):
     if not lines:
         return Table({}, units, path)
     header = [h.strip() for h in lines[0].split(",")]
+    if len(set(header)) != len(header):
+        raise RunFileError(f"{path}: the header repeats a column: {lines[0]!r}")
     rows = []
     for n, ln in enumerate(lines[1:], start=2):
         parts = ln.split(",")
@@ -363,10 +365,17 @@ def read_vtr(path):
     return Fields(xn, yn, arrays, t, path)
 
 
-def read_pvd(path):
-    """[(t, path of the file)] of a ParaView collection, in the file's order."""
-    root = ET.parse(path).getroot()
-    folder = os.path.dirname(path)
+def read_pvd(path, join=True):
+    """[(t, path of the file)] of a ParaView collection, in the file's order (join=False: the
+    file names as listed, relative to the collection's folder)."""
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as e:
+        raise RunFileError(f"{path}: not valid XML: {e}") from None
+    if root.tag != "VTKFile" or root.get("type") != "Collection":
+        raise RunFileError(f"{path}: not a VTK Collection (root <{root.tag} "
+                           f"type={root.get('type')}>)")
+    folder = os.path.dirname(path) if join else ""
     return [(float(e.get("timestep")), os.path.join(folder, e.get("file")))
             for e in root.iter("DataSet")]
 
