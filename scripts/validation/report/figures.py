@@ -11,6 +11,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from .runs import FIG_REL  # noqa: E402 (puts scripts/ on sys.path)
+import figstyle  # noqa: E402
 import plot_collapse as pc  # noqa: E402
 
 MAX_PNG = 200 * 1024
@@ -106,19 +107,8 @@ def collapse_figures(run, figs_dir, names):
     if not os.path.exists(stamp) or os.path.getmtime(stamp) < os.path.getmtime(
             os.path.join(run.dir, "summary.json")):
         os.makedirs(src, exist_ok=True)
-        r = pc.Run(run.dir)
-        key = pc.which_case(r.case)
-        ref = pc.REFERENCES.get(key) if key else None
-        shift = ref["time_shift"] if ref else 0.0
-        pc.plot_front(r, [], ref, shift, src)
-        pc.plot_profile(r, [], ref, src)
-        pc.plot_snapshots(r, ref, src, "speed", "collapse_speed.png", "|u| (m/s)", cmap="jet")
-        pc.plot_snapshots(r, ref, src, "D_norm", "collapse_strain.png", "|D(u)| (1/s)", log=True)
-        pc.plot_snapshots(r, ref, src, "p", "collapse_pressure.png", "p (Pa)", cmap="coolwarm")
-        pc.plot_structure(r, ref, src)
-        pc.plot_hl(r, ref, src)
-        pc.plot_head(r, ref, src)
-        pc.plot_scalars(r, src)
+        # 110 dpi, as the report's own figures: the copies stay under 200 kB.
+        pc.draw_all(pc.Run(run.dir), figstyle.Output(src, dpi=110))
     out = []
     for n in names:
         p = os.path.join(src, f"collapse_{n}.png")
