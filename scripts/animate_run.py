@@ -14,7 +14,6 @@ chooses, --out names the file (its extension is replaced by the format's).
 
 Also `plot_run.py --animate OUTDIR`.
 """
-import argparse
 import os
 import sys
 
@@ -98,9 +97,7 @@ def main(folder, out=None, fmt=None, fps=None, vmax=None, dpi=120):
 
 
 def parse_args(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0],
-                                 epilog=__doc__.split("\n\n", 2)[2],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = figstyle.parser(__doc__)
     ap.add_argument("out_dir", metavar="OUTDIR", help="a granflow run folder with a VTK series")
     ap.add_argument("--out", metavar="FILE", help="the animation (OUTDIR/figures/speed.EXT)")
     ap.add_argument("--format", choices=("mp4", "gif"),

@@ -42,6 +42,15 @@ class Output:
         plt.close(fig)
 
 
+def parser(doc):
+    """The command line of a figure script, its help from the script's docstring: the first
+    line as description, what follows the usage paragraph as epilog."""
+    import argparse
+    return argparse.ArgumentParser(description=doc.split("\n")[0],
+                                   epilog=doc.split("\n\n", 2)[2],
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
 def formats_arg(text):
     """argparse type of --format: "pdf", "svg" or "pdf,svg"."""
     import argparse

@@ -40,7 +40,6 @@ copy of each, its text kept as text):
 The reference numbers are those of ../shared/reference/paper_targets.md (the paper's text; its
 figures are not available as data, so no experimental curve is drawn, only its numbers).
 """
-import argparse
 import math
 import os
 import sys
@@ -543,9 +542,7 @@ def main(out, compare=(), time_shift=None, labels=(), figures=None, formats=(), 
 
 
 def parse_args(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0],
-                                 epilog=__doc__.split("\n\n", 2)[2],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = figstyle.parser(__doc__)
     ap.add_argument("out", metavar="OUTDIR", help="a two-phase granflow run folder")
     ap.add_argument("--compare", nargs="+", default=[], metavar="DIR",
                     help="other run folders to overlay (front and final profile)")

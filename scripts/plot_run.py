@@ -18,7 +18,6 @@ of each figure, its text kept as text:
 - with --animate, the animation of scripts/animate_run.py (|u| in the granular phase with the
   interface, from the VTK series): speed.mp4 if ffmpeg is installed, else speed.gif.
 """
-import argparse
 import math
 import os
 import sys
@@ -95,9 +94,7 @@ def main(folder, figures=None, formats=(), dpi=figstyle.DPI, animate=False):
 
 
 def parse_args(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0],
-                                 epilog=__doc__.split("\n\n", 2)[2],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = figstyle.parser(__doc__)
     ap.add_argument("out", metavar="OUTDIR", help="a granflow run folder (--out of granflow run)")
     figstyle.add_arguments(ap)
     ap.add_argument("--figures", metavar="DIR", help="folder of the figures (OUTDIR/figures)")
