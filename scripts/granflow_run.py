@@ -43,7 +43,8 @@ noise of their sum (0.30000000000000004): select a time by distance, not by `==`
     p.times[0]                          # the output time actually picked
     x, h = p["x"], p["h"]
     for t, block in run.profiles.blocks(): ...    # one Table per output time
-    s = run.structure.at(0.3).where(run.structure.at(0.3)["cutoff"] == 0.075)
+    st = run.structure.at(0.3)          # both cut-offs at 0.3 s ...
+    st = st.where(st["cutoff"] == 0.075)  # ... the 7.5 % one (a value of the file: == is safe)
 
 Fields (the VTK series fields.pvd / fields_NNNNNN.vtr: cell values of a 2-D rectilinear grid):
 
