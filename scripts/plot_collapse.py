@@ -474,7 +474,7 @@ def plot_scalars(run, out):
     axs[0, 0].set_ylabel("back-wall height (m)")
     axs[0, 1].plot(d["t"], d["max_p_granular"] / scale)
     axs[0, 1].axhline(1.0, color="k", ls="--", lw=0.8)
-    axs[0, 1].set_ylabel(f"max granular p / (rho_s g H_c = {scale:.4g} Pa) (-)")
+    axs[0, 1].set_ylabel(f"max granular p / rho_s g H_c (-)\n(rho_s g H_c = {scale:.4g} Pa)")
     axs[1, 0].plot(d["t"], d["volume_change_pct"])
     axs[1, 0].axhline(-0.84, color="tab:blue", ls="--", lw=0.8, label="paper: loss < 0.84 %")
     axs[1, 0].legend(fontsize=7)
