@@ -19,21 +19,21 @@ for m in 0 5; do
   awk -v m=$m '/fixed point step/ {gsub(/[()]/,""); print m","$4","$6","$8","$10","$14}' "$tmp/log$m" \
     >> "$root/docs/fp_convergence.csv"
 done
-/usr/bin/python3 - "$root/docs/fp_convergence.csv" "$root/docs/figures/fp_convergence.png" <<'PY'
-import csv, sys
+PYTHONPATH="$root/scripts" /usr/bin/python3 - "$root/docs/fp_convergence.csv" "$root/docs/figures/fp_convergence.png" <<'PY'
+import sys
+import granflow_run as gr
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-rows = list(csv.DictReader(open(sys.argv[1])))
+rows = gr.read_csv(sys.argv[1])
 fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
-for m, style in (("0", "-"), ("5", "--")):
-    for step in sorted({r["step"] for r in rows}, key=int):
-        sel = [r for r in rows if r["step"] == step and r["anderson"] == m]
-        it = [int(r["iteration"]) for r in sel]
-        lab = ("Picard" if m == "0" else "Anderson(5)") + f", step {step}"
-        ax[0].semilogy(it, [float(r["change"]) for r in sel], style, label=lab)
-        ax[1].semilogy(it, [float(r["du_max_mps"]) / float(r["u_max_mps"]) for r in sel], style,
-                       label=lab)
+for m, style in ((0, "-"), (5, "--")):
+    for step in sorted(set(rows["step"].astype(int).tolist())):
+        sel = rows.where((rows["step"] == step) & (rows["anderson"] == m))
+        it = sel["iteration"].astype(int).tolist()
+        lab = ("Picard" if m == 0 else "Anderson(5)") + f", step {step}"
+        ax[0].semilogy(it, sel["change"].tolist(), style, label=lab)
+        ax[1].semilogy(it, (sel["du_max_mps"] / sel["u_max_mps"]).tolist(), style, label=lab)
 ax[0].set_ylabel(r"max change of $S$ and $s_t$ per iteration")
 ax[1].set_ylabel(r"max $|\tilde u_k - \tilde u_{k-1}|$ / max $|\tilde u|$")
 for a in ax:
