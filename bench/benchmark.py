@@ -24,6 +24,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+import granflow_run as gr  # noqa: E402
+
 PHASES = ["LevelSetAdvect", "Redistance", "Properties", "Assemble", "ViscousSolve", "Plastic",
           "Anderson", "Pressure", "Output", "Checkpoint"]
 # Issue 6's targets on 2 cores (s) and the references quoted there.
@@ -66,11 +69,10 @@ def run_one(args, n, ranks, outdir):
     wall_outer = time.time() - t0
     if r.returncode != 0:
         sys.exit(f"benchmark: run failed ({' '.join(cmd)}):\n{r.stdout[-2000:]}")
-    s = json.load(open(os.path.join(outdir, "summary.json")))
-    rows = list(csv.DictReader(open(os.path.join(outdir, "diagnostics.csv"))))[1:]
-    fp = [float(x["fp_iters"]) for x in rows]
-    visc = [float(x["visc_its"]) for x in rows]
-    pres = [float(x["pres_its"]) for x in rows]
+    run = gr.Run(outdir)
+    s = dict(run.summary)
+    d = run.diagnostics  # the first row is t = 0, before any step
+    fp, visc, pres = (d[k].tolist()[1:] for k in ("fp_iters", "visc_its", "pres_its"))
     s["wall_outer_s"] = wall_outer
     s["fp_per_step"] = statistics.mean(fp) if fp else 0.0
     s["visc_per_solve"] = sum(visc) / max(sum(fp), 1.0)

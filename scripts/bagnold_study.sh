@@ -18,23 +18,23 @@ for n in $ns; do
   "$build/granflow" run "$root/cases/verify/bagnold.toml" --set grid.n=$n --out "$tmp/n$n" > "$tmp/log$n" 2>&1
   echo "$n $((SECONDS - start))" >> "$tmp/times"
 done
-/usr/bin/python3 - "$tmp" "$root" "$out_md" $ns <<'PY'
-import csv, math, sys
+PYTHONPATH="$root/scripts" /usr/bin/python3 - "$tmp" "$root" "$out_md" $ns <<'PY'
+import math, sys
 import numpy as np
+import granflow_run as gr
 tmp, root, out_md = sys.argv[1], sys.argv[2], sys.argv[3]
 ns = [int(v) for v in sys.argv[4:]]
 mus, dmu, I0, d, a = 0.38, 0.26, 0.3, 0.04, 0.43
 Ia = I0 * (math.tan(a) - mus) / (mus + dmu - math.tan(a))
 U0 = Ia * math.sqrt(math.cos(a)) / d
-peer = {}
-with open(f"{root}/../shared/reference/bagnold_gerris_test.csv") as f:
-    for r in csv.DictReader(line for line in f if not line.startswith("#")):
-        peer[int(r["N_cells"])] = (float(r["L1_error"]), float(r["L2_error"]), float(r["Linf_error"]))
+ref = gr.read_csv(f"{root}/../shared/reference/bagnold_gerris_test.csv")  # '#' lines skipped
+peer = {int(n): (l1, l2, li) for n, l1, l2, li in
+        zip(*(ref[k].tolist() for k in ("N_cells", "L1_error", "L2_error", "Linf_error")))}
 times = dict(line.split() for line in open(f"{tmp}/times"))
 rows = []
 for n in ns:
-    dat = np.genfromtxt(f"{tmp}/n{n}/probes/profile.csv", delimiter=",", names=True)
-    blocks = [dat[dat["t"] == t] for t in np.unique(dat["t"])[-2:]]
+    dat = gr.read_csv(f"{tmp}/n{n}/probes/profile.csv")
+    blocks = [dat.where(dat["t"] == t) for t in dat.times[-2:]]
     b = blocks[-1]
     sel = np.abs(b["y"] * n - 0.5 - np.round(b["y"] * n - 0.5)) < 1e-9
     y, u = b["y"][sel], b["u"][sel]

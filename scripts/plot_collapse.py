@@ -1,11 +1,13 @@
 #!/usr/bin/python3
 """Figures of a granular column collapse, from a granflow output folder alone.
 
-usage: plot_collapse.py OUTDIR [--compare DIR ...] [--time-shift S]
+usage: plot_collapse.py OUTDIR [--compare DIR ...] [--label TEXT ...] [--figures DIR]
+                         [--time-shift S] [--format pdf|svg|pdf,svg] [--dpi N]
 
 Reads diagnostics.csv, profiles.csv, structure.csv, deposit.csv, summary.json and the VTK
 snapshots (fields.pvd, fields_*.vtr) written by `granflow run` (diagnostics/Collapse.hpp defines
-every quantity), and writes OUTDIR/figures/:
+every quantity), and writes OUTDIR/figures/ (PNG at 200 dpi; --format pdf or svg adds a vector
+copy of each, its text kept as text):
 
   collapse_front.png      front position against t (paper Figs. 7, 10, 16, 21), the stages
                           t1, t2, t3, tf found by granflow, and the paper's and the experiment's
@@ -23,8 +25,12 @@ every quantity), and writes OUTDIR/figures/:
                           and max granular speed against t.
 
 --compare DIR ...  overlays the fronts and final profiles of other runs (resolutions, Fig. 6;
-                   viscosities, Fig. 9; wall frictions, Fig. 15), labelled by their grid and
-                   case title.
+                   viscosities, Fig. 9; wall frictions, Fig. 15): writes collapse_front.png and
+                   collapse_profile.png only, into OUTDIR/figures/compare_<DIR names>/ (or
+                   --figures), so that OUTDIR's own figures stay as they are. Each curve is
+                   labelled by its run's folder name, or by --label.
+--label TEXT ...   the legend labels of OUTDIR and of each --compare DIR, in that order.
+--figures DIR      where the figures go instead.
 --time-shift S     the gate of the experiments is not modelled: the paper compares case A with
                    the experiment after a time shift of -0.03 s (half the lifting time of the
                    gate, section 4.1.1). Experimental times t_exp are drawn at t_exp + S on the
@@ -34,21 +40,19 @@ every quantity), and writes OUTDIR/figures/:
 The reference numbers are those of ../shared/reference/paper_targets.md (the paper's text; its
 figures are not available as data, so no experimental curve is drawn, only its numbers).
 """
-import argparse
-import csv
-import json
 import math
 import os
-import struct
 import sys
-import tomllib
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figstyle  # noqa: E402
+import granflow_run as gr  # noqa: E402
 
 # ---- Reference numbers (paper_targets.md). Times in s, lengths in m, speeds in m/s.
 REFERENCES = {
@@ -94,73 +98,28 @@ REFERENCES = {
 }
 
 
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]} if rows else {}
+class Run(gr.Run):
+    """A two-phase run folder (granflow_run.Run) with the short names this script uses."""
 
-
-def read_vtr(path):
-    """granflow's RectilinearGrid files: appended raw data, UInt64 headers, Float64 values."""
-    raw = open(path, "rb").read()
-    head = raw.index(b"<AppendedData")
-    k = raw.index(b"_", head) + 1
-    root = ET.fromstring(raw[:head].decode() + "</VTKFile>")
-
-    def block(off):
-        n = struct.unpack_from("<Q", raw, k + off)[0]
-        return np.frombuffer(raw, dtype="<f8", count=n // 8, offset=k + off + 8)
-
-    arrays = {}
-    for da in root.iter("DataArray"):
-        if da.get("format") == "appended":
-            arrays[da.get("Name")] = (block(int(da.get("offset"))),
-                                      int(da.get("NumberOfComponents", "1")))
-    coords = next(root.iter("Coordinates"))
-    xn, yn = [block(int(da.get("offset"))) for da in coords.iter("DataArray")][:2]
-    nx, ny = len(xn) - 1, len(yn) - 1
-
-    def field(name):
-        a, nc = arrays[name]
-        return a.reshape(ny, nx) if nc == 1 else a.reshape(ny, nx, nc)
-    return xn, yn, field
-
-
-def pvd_files(out):
-    path = os.path.join(out, "fields.pvd")
-    if not os.path.exists(path):
-        return []
-    root = ET.parse(path).getroot()
-    return [(float(e.get("timestep")), os.path.join(out, e.get("file")))
-            for e in root.iter("DataSet")]
-
-
-class Run:
-    def __init__(self, out):
+    def __init__(self, out, label=None):
+        super().__init__(out)
+        for name in ("case.toml", "summary.json", "diagnostics.csv", "profiles.csv"):
+            if not self.has(name):
+                raise FileNotFoundError(f"{out}: no {name}")
         self.out = out
-        with open(os.path.join(out, "case.toml"), "rb") as f:
-            self.case = tomllib.load(f)
-        self.diag = read_csv(os.path.join(out, "diagnostics.csv"))
-        with open(os.path.join(out, "summary.json")) as f:
-            self.summary = json.load(f)
-        self.prof = read_csv(os.path.join(out, "profiles.csv"))
-        p = os.path.join(out, "structure.csv")
-        self.struct = read_csv(p) if os.path.exists(p) else {}
-        p = os.path.join(out, "deposit.csv")
-        self.dep = read_csv(p) if os.path.exists(p) else {}
-        self.times = np.unique(self.prof["t"])
-        self.title = self.case.get("title", out)
-        self.label = f"{self.summary.get('nx')} x {self.summary.get('ny')}"
+        self.diag, self.prof = self.diagnostics, self.profiles
+        self.struct, self.dep = self.structure, self.deposit  # empty where the file is missing
+        self.times = self.prof.times
+        self.label = f"{self.summary.get('nx')} x {self.summary.get('ny')}"  # the grid
+        self.legend = label or self.name  # the run's own name in a comparison
 
     def profile(self, t):
         """(x, h) at the output time nearest to t."""
-        tt = self.times[np.argmin(np.abs(self.times - t))]
-        m = self.prof["t"] == tt
-        return tt, self.prof["x"][m], self.prof["h"][m]
+        p = self.prof.at(t, tol=None)
+        return p.times[0], p["x"], p["h"]
 
     def s(self, key):
-        v = self.summary.get(key)
-        return float("nan") if v is None else float(v)
+        return self.value(key)
 
 
 def which_case(case):
@@ -180,19 +139,18 @@ def fmt(v, unit="", nd=3):
     return "n/a" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.{nd}g}{unit}"
 
 
-def savefig(fig, figs, name):
-    fig.tight_layout()
-    fig.savefig(os.path.join(figs, name), dpi=120)
-    plt.close(fig)
+def curve_label(run, compared):
+    """The legend of a run's curve: its grid alone, or its name and grid among others."""
+    return f"{run.legend} ({run.label})" if compared else f"granflow {run.label}"
 
 
 # ---- Front position against time, with the stages (Figs. 7, 8, 16).
-def plot_front(run, others, ref, shift, figs):
+def plot_front(run, others, ref, shift, out):
     fig, ax = plt.subplots(figsize=(8, 5.5))
     d = run.diag
-    ax.plot(d["t"], d["front_x"], "-", color="k", lw=1.8, label=f"granflow {run.label}")
+    ax.plot(d["t"], d["front_x"], "-", color="k", lw=1.8, label=curve_label(run, others))
     for o in others:
-        ax.plot(o.diag["t"], o.diag["front_x"], "-", lw=1.2, label=f"granflow {o.label}: {o.title}")
+        ax.plot(o.diag["t"], o.diag["front_x"], "-", lw=1.2, label=curve_label(o, True))
     colors = {"t1": "tab:green", "t2": "tab:orange", "t3": "tab:red", "tf": "tab:purple"}
     for k, c in colors.items():
         v = run.s(k + "_s")
@@ -237,24 +195,24 @@ def plot_front(run, others, ref, shift, figs):
                 label=f"granflow constant phase: {V:.3f} m/s")
     ax.set_xlabel("t (s)")
     ax.set_ylabel("front position x (m)")
-    ax.set_title(f"{run.title}\nrunout {fmt(run.s('runout_m'), ' m')} "
-                 f"(furthest {fmt(run.s('max_front_x_m'), ' m')})", fontsize=9)
+    figstyle.title(ax, f"{run.title}\nrunout {fmt(run.s('runout_m'), ' m')} "
+                   f"(furthest {fmt(run.s('max_front_x_m'), ' m')})")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="lower right", bbox_to_anchor=(1.0, 0.1))
-    savefig(fig, figs, "collapse_front.png")
+    out.save(fig, "collapse_front.png")
 
 
 # ---- Final profile (Figs. 6, 9, 15).
-def plot_profile(run, others, ref, figs):
+def plot_profile(run, others, ref, out):
     t, x, h = run.profile(run.times[-1])
     t0, x0, h0 = run.profile(run.times[0])
     aspect = 1.15 * max(h0.max(), h.max()) / (x[-1] + 0.5 * (x[1] - x[0]))
     fig, ax = plt.subplots(figsize=(10, max(3.0, 10 * aspect + 1.2)))
     ax.plot(x0, h0, color="0.6", lw=1, label=f"t = {t0:g} s")
-    ax.plot(x, h, color="k", lw=1.8, label=f"granflow {run.label}, t = {t:.3g} s")
+    ax.plot(x, h, color="k", lw=1.8, label=f"{curve_label(run, others)}, t = {t:.3g} s")
     for o in others:
         to, xo, ho = o.profile(o.times[-1])
-        ax.plot(xo, ho, lw=1.2, label=f"granflow {o.label}, t = {to:.3g} s: {o.title}")
+        ax.plot(xo, ho, lw=1.2, label=f"{curve_label(o, True)}, t = {to:.3g} s")
     front = run.s("runout_m")
     # The slope fits of summary.json, drawn over their ranges.
     col = run.case.get("collapse", {})
@@ -289,16 +247,16 @@ def plot_profile(run, others, ref, figs):
     ax.set_ylim(0, 1.15 * max(h0.max(), h.max()))
     ax.set_xlabel("x (m)")
     ax.set_ylabel("h (m)")
-    ax.set_title(f"final deposit: runout {fmt(run.s('runout_m'), ' m')}, back wall "
-                 f"{fmt(run.s('backwall_height_m'), ' m')}, front angle "
-                 f"{fmt(run.s('front_angle_deg'), ' deg')}", fontsize=9)
+    figstyle.title(ax, f"final deposit: runout {fmt(run.s('runout_m'), ' m')}, back wall "
+                   f"{fmt(run.s('backwall_height_m'), ' m')}, front angle "
+                   f"{fmt(run.s('front_angle_deg'), ' deg')}")
     ax.legend(fontsize=7, loc="upper right", bbox_to_anchor=(1.0, 0.9))
     ax.grid(alpha=0.3)
-    savefig(fig, figs, "collapse_profile.png")
+    out.save(fig, "collapse_profile.png")
 
 
 def snapshot_times(run, ref, n=6):
-    files = pvd_files(run.out)
+    files = run.snapshots
     if not files:
         return []
     if ref and "snap_times" in ref:
@@ -314,32 +272,54 @@ def snapshot_times(run, ref, n=6):
 
 
 # ---- Snapshots of a cell field in the granular phase, with the interface (Figs. 3-5, 17-19).
-def plot_snapshots(run, ref, figs, name, fname, label, log=False, cmap="viridis"):
+def shown_region(run):
+    """(xmax, ymax) in m of a collapse run (a granflow_run.Run): the region the mass occupies (the air above it is not part of these
+    figures)."""
+    Lx = run.case.get("domain", {}).get("Lx", 1.0)
+    Ly = run.case.get("domain", {}).get("Ly", 1.0)
+    ymax = min(Ly, 1.15 * max(run.profiles["h"].max(), 1e-3))
+    xmax = min(Lx, 1.1 * np.nanmax(run.diagnostics["front_x"]) + 0.02)
+    return xmax, ymax
+
+
+def panel_grid(n, xmax, ymax, pw):
+    """A figure of n panels of the region [0, xmax] x [0, ymax] at equal aspect, pw inches
+    wide each, in 2 columns from 4 panels on: sized to the panels, so that the canvas is not
+    left blank around them. Returns (fig, axes array (rows, columns))."""
+    ncol = 2 if n > 3 else 1
+    nrow = math.ceil(n / ncol)
+    ph = (pw - 0.6) * ymax / xmax  # the height of a panel's data area (tick labels take 0.6 in)
+    fig = plt.figure(figsize=(ncol * pw + 1.4, nrow * (ph + 0.5) + 0.8), layout="constrained")
+    axs = fig.subplots(nrow, ncol, squeeze=False, sharex=True, sharey=True)
+    for ax in list(axs.flat)[n:]:
+        ax.axis("off")
+    for k, ax in enumerate(axs.flat[:n]):
+        row, col = divmod(k, ncol)
+        below = (row + 1) * ncol + col  # the panel under this one, if there is one
+        if below >= n:
+            ax.set_xlabel("x (m)")
+            ax.xaxis.set_tick_params(labelbottom=True)
+        if col == 0:
+            ax.set_ylabel("y (m)")
+        ax.tick_params(labelsize=7)
+    return fig, axs
+
+
+def plot_snapshots(run, ref, out, name, fname, label, log=False, cmap="viridis"):
     snaps = snapshot_times(run, ref)
     if not snaps:
         return
-    n = len(snaps)
-    ncol = 2 if n > 3 else 1
-    nrow = math.ceil(n / ncol)
-    Lx = run.case.get("domain", {}).get("Lx", 1.0)
-    Ly = run.case.get("domain", {}).get("Ly", 1.0)
-    # Show the region the mass occupies (the air above it is not part of these figures).
-    ymax = min(Ly, 1.15 * max(run.prof["h"].max(), 1e-3))
-    xmax = min(Lx, 1.1 * np.nanmax(run.diag["front_x"]) + 0.02)
-    fig, axs = plt.subplots(nrow, ncol, squeeze=False,
-                            figsize=(6.5 * ncol + 1.2, nrow * (5.5 * ymax / xmax + 0.7) + 0.6))
+    xmax, ymax = shown_region(run)
     vals = []
     data = []
     for t, f in snaps:
-        xn, yn, field = read_vtr(f)
-        phi = field("phi")
-        a = field(name)
-        a = np.ma.masked_where(phi >= 0, a)
-        data.append((t, xn, yn, phi, a))
+        fld = gr.read_vtr(f)
+        phi = fld["phi"]
+        a = fld.granular(name)
+        data.append((t, fld.xn, fld.yn, phi, a))
         if a.count():
             vals.append(a.compressed())
     if not vals:
-        plt.close(fig)
         return
     allv = np.concatenate(vals)
     if log:
@@ -348,24 +328,22 @@ def plot_snapshots(run, ref, figs, name, fname, label, log=False, cmap="viridis"
         norm = matplotlib.colors.LogNorm(vmin=vmin, vmax=vmax)
     else:
         norm = matplotlib.colors.Normalize(vmin=min(0.0, allv.min()), vmax=allv.max())
+    fig, axs = panel_grid(len(data), xmax, ymax, 5.2)
     im = None
     for ax, (t, xn, yn, phi, a) in zip(axs.flat, data):
         a_plot = np.ma.masked_where(a <= 0, a) if log else a
-        im = ax.pcolormesh(xn, yn, a_plot, norm=norm, cmap=cmap, shading="flat")
+        # Rasterized: in a PDF or SVG the cells are an image, the axes and text stay vector.
+        im = ax.pcolormesh(xn, yn, a_plot, norm=norm, cmap=cmap, shading="flat", rasterized=True)
         xc, yc = 0.5 * (xn[1:] + xn[:-1]), 0.5 * (yn[1:] + yn[:-1])
         ax.contour(xc, yc, phi, levels=[0], colors="k", linewidths=0.8)
         ax.set_xlim(0, xmax)
         ax.set_ylim(0, ymax)
         ax.set_aspect("equal")
         ax.set_title(f"t = {t:.3g} s", fontsize=9)
-        ax.tick_params(labelsize=7)
-    for ax in list(axs.flat)[n:]:
-        ax.axis("off")
     fig.colorbar(im, ax=axs.ravel().tolist(), shrink=0.8, label=label)
-    fig.suptitle(f"{run.title} ({run.label}): {label} where phi < 0, interface phi = 0 (black)",
-                 fontsize=9)
-    fig.savefig(os.path.join(figs, fname), dpi=120)
-    plt.close(fig)
+    figstyle.suptitle(fig, f"{run.title} ({run.label}): {label} where phi < 0, interface "
+                           "phi = 0 (black)")
+    out.save(fig, fname, tight=False)
 
 
 def structure_times(run, ref, n=6):
@@ -387,16 +365,18 @@ def structure_times(run, ref, n=6):
 
 
 # ---- Basal deposit and flowing layer (Fig. 23).
-def plot_structure(run, ref, figs):
+def plot_structure(run, ref, out):
     s = run.struct
     if not s:
         return
     cut = np.unique(s["cutoff"]).max()  # the largest cut-off (7.5 % by default), as Fig. 23
     ts = structure_times(run, ref)
-    fig, axs = plt.subplots(len(ts), 1, figsize=(8, 1.3 * len(ts) + 0.8), sharex=True)
-    axs = np.atleast_1d(axs)
     xmax = min(run.case.get("domain", {}).get("Lx", 1.0), 1.1 * np.nanmax(run.diag["front_x"]))
     ymax = 1.1 * s["h"].max()
+    pw = 7.0
+    fig, axs = plt.subplots(len(ts), 1, sharex=True, layout="constrained",
+                            figsize=(pw + 0.8, len(ts) * ((pw - 0.6) * ymax / xmax + 0.12) + 0.9))
+    axs = np.atleast_1d(axs)
     for ax, t in zip(axs, ts):
         m = (s["t"] == t) & (s["cutoff"] == cut)
         x, h, hd = s["x"][m], s["h"][m], s["h_deposit"][m]
@@ -406,17 +386,18 @@ def plot_structure(run, ref, figs):
         ax.set_xlim(0, xmax)
         ax.set_ylim(0, ymax)
         ax.set_aspect("equal")
+        ax.set_ylabel("y (m)", fontsize=8)
         ax.text(0.99, 0.8, f"t = {t:.3g} s", transform=ax.transAxes, ha="right", fontsize=8)
         ax.tick_params(labelsize=7)
     axs[0].legend(fontsize=7, loc="upper center", ncol=2)
     axs[-1].set_xlabel("x (m)")
-    fig.suptitle(f"{run.title} ({run.label}): deposit = |u| <= {cut:g} max granular |u|",
-                 fontsize=9)
-    savefig(fig, figs, "collapse_structure.png")
+    figstyle.suptitle(fig, f"{run.title} ({run.label}): deposit = |u| <= {cut:g} max granular "
+                           "|u|")
+    out.save(fig, "collapse_structure.png", tight=False)
 
 
 # ---- Flowing-layer height and its time derivative (Figs. 24, 25).
-def plot_hl(run, ref, figs):
+def plot_hl(run, ref, out):
     s = run.struct
     if not s:
         return
@@ -444,13 +425,13 @@ def plot_hl(run, ref, figs):
         ax.set_xlim(0, xmax)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle(f"{run.title} ({run.label}): flowing layer h_l = h - h_deposit, cut-off "
-                 f"{cut:g}", fontsize=9)
-    savefig(fig, figs, "collapse_hl.png")
+    figstyle.suptitle(fig, f"{run.title} ({run.label}): flowing layer h_l = h - h_deposit, "
+                           f"cut-off {cut:g}")
+    out.save(fig, "collapse_hl.png")
 
 
 # ---- Sliding head and deposit area (Figs. 26, 27).
-def plot_head(run, ref, figs):
+def plot_head(run, ref, out):
     d = run.dep
     if not d:
         return
@@ -473,19 +454,19 @@ def plot_head(run, ref, figs):
         axs[1, 0].axhspan(0.20, 0.25, color="tab:blue", alpha=0.15,
                           label="paper: A_d/A ~ 20-25 % in the constant phase")
     axs[0, 0].set(xlabel="t (s)", ylabel="L_h = L - L_d (m)")
-    axs[0, 1].set(xlabel="L_d / L_f", ylabel="L_h / L_f")
-    axs[1, 0].set(xlabel="t (s)", ylabel="A_d / A")
-    axs[1, 1].set(xlabel="L_d / L_f", ylabel="A_d / A")
+    axs[0, 1].set(xlabel="L_d / L_f (-)", ylabel="L_h / L_f (-)")
+    axs[1, 0].set(xlabel="t (s)", ylabel="A_d / A (-)")
+    axs[1, 1].set(xlabel="L_d / L_f (-)", ylabel="A_d / A (-)")
     for ax in axs.flat:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle(f"{run.title} ({run.label}): sliding head and basal deposit beyond the gate "
-                 f"(L_f = furthest front - L_c = {Lf:.3g} m; deposit: |u| <= cut-off x the "
-                 f"largest granular |u| so far)", fontsize=9)
-    savefig(fig, figs, "collapse_head.png")
+    figstyle.suptitle(fig, f"{run.title} ({run.label}): sliding head and basal deposit beyond "
+                           f"the gate (L_f = furthest front - L_c = {Lf:.3g} m; deposit: |u| <= "
+                           "cut-off x the largest granular |u| so far)")
+    out.save(fig, "collapse_head.png")
 
 
-def plot_scalars(run, figs):
+def plot_scalars(run, out):
     d = run.diag
     scale = run.s("pressure_scale_pa")
     fig, axs = plt.subplots(2, 2, figsize=(10, 7))
@@ -493,7 +474,7 @@ def plot_scalars(run, figs):
     axs[0, 0].set_ylabel("back-wall height (m)")
     axs[0, 1].plot(d["t"], d["max_p_granular"] / scale)
     axs[0, 1].axhline(1.0, color="k", ls="--", lw=0.8)
-    axs[0, 1].set_ylabel(f"max granular p / (rho_s g H_c = {scale:.4g} Pa)")
+    axs[0, 1].set_ylabel(f"max granular p / rho_s g H_c (-)\n(rho_s g H_c = {scale:.4g} Pa)")
     axs[1, 0].plot(d["t"], d["volume_change_pct"])
     axs[1, 0].axhline(-0.84, color="tab:blue", ls="--", lw=0.8, label="paper: loss < 0.84 %")
     axs[1, 0].legend(fontsize=7)
@@ -503,35 +484,85 @@ def plot_scalars(run, figs):
     for ax in axs.flat:
         ax.set_xlabel("t (s)")
         ax.grid(alpha=0.3)
-    fig.suptitle(f"{run.title} ({run.label})", fontsize=9)
-    savefig(fig, figs, "collapse_scalars.png")
+    figstyle.suptitle(fig, f"{run.title} ({run.label})")
+    out.save(fig, "collapse_scalars.png")
 
 
-def main(out, compare=(), time_shift=None):
-    figs = os.path.join(out, "figures")
-    os.makedirs(figs, exist_ok=True)
-    run = Run(out)
-    others = [Run(o) for o in compare]
+def reference(run, time_shift=None):
+    """(the paper's numbers for the run's case or None, the time shift of the experiment)."""
     key = which_case(run.case)
     ref = REFERENCES.get(key) if key else None
     shift = time_shift if time_shift is not None else (ref["time_shift"] if ref else 0.0)
-    plot_front(run, others, ref, shift, figs)
-    plot_profile(run, others, ref, figs)
-    plot_snapshots(run, ref, figs, "speed", "collapse_speed.png", "|u| (m/s)", cmap="jet")
-    plot_snapshots(run, ref, figs, "D_norm", "collapse_strain.png", "|D(u)| (1/s)", log=True)
-    plot_snapshots(run, ref, figs, "p", "collapse_pressure.png", "p (Pa)", cmap="coolwarm")
-    plot_structure(run, ref, figs)
-    plot_hl(run, ref, figs)
-    plot_head(run, ref, figs)
-    plot_scalars(run, figs)
+    return ref, shift
+
+
+def draw_all(run, out, time_shift=None):
+    """Every figure of one run into `out` (a figstyle.Output)."""
+    ref, shift = reference(run, time_shift)
+    plot_front(run, [], ref, shift, out)
+    plot_profile(run, [], ref, out)
+    plot_snapshots(run, ref, out, "speed", "collapse_speed.png", "|u| (m/s)")
+    plot_snapshots(run, ref, out, "D_norm", "collapse_strain.png", "|D(u)| (1/s)", log=True,
+                   cmap="magma")
+    plot_snapshots(run, ref, out, "p", "collapse_pressure.png", "p (Pa)", cmap="cividis")
+    plot_structure(run, ref, out)
+    plot_hl(run, ref, out)
+    plot_head(run, ref, out)
+    plot_scalars(run, out)
+
+
+def compare_folder(out, compare):
+    """OUTDIR/figures/compare_<names of the compared folders>: a comparison's own folder."""
+    names = "_".join(os.path.basename(os.path.normpath(c)) for c in compare)
+    return os.path.join(out, "figures", "compare_" + names[:120])
+
+
+def main(out, compare=(), time_shift=None, labels=(), figures=None, formats=(), dpi=None):
+    """The figures of run `out`; with `compare`, its front and final profile against those runs
+    (labels: of out, then of each compared run; default their folder names)."""
+    folders = [out, *compare]
+    if labels and len(labels) != len(folders):
+        raise ValueError(f"--label: {len(labels)} labels for {len(folders)} runs")
+    runs = [Run(f, lab) for f, lab in zip(folders, list(labels) or [None] * len(folders))]
+    names = [r.legend for r in runs]
+    if len(set(names)) < len(names):  # the same folder name in different places
+        for r, f in zip(runs, folders):
+            r.legend = f if not labels else r.legend
+    run, others = runs[0], runs[1:]
+    if figures is None:
+        figures = compare_folder(out, compare) if compare else os.path.join(out, "figures")
+    dest = figstyle.Output(figures, dpi or figstyle.DPI, formats)
+    if others:
+        ref, shift = reference(run, time_shift)
+        plot_front(run, others, ref, shift, dest)
+        plot_profile(run, others, ref, dest)
+    else:
+        draw_all(run, dest, time_shift)
+    return figures
+
+
+def parse_args(argv=None):
+    ap = figstyle.parser(__doc__)
+    ap.add_argument("out", metavar="OUTDIR", help="a two-phase granflow run folder")
+    ap.add_argument("--compare", nargs="+", default=[], metavar="DIR",
+                    help="other run folders to overlay (front and final profile)")
+    ap.add_argument("--label", nargs="+", default=[], metavar="TEXT",
+                    help="legend labels: OUTDIR's, then each --compare DIR's")
+    ap.add_argument("--figures", metavar="DIR", help="folder of the figures")
+    ap.add_argument("--time-shift", type=float, default=None, metavar="S")
+    figstyle.add_arguments(ap)
+    a = ap.parse_args(argv)
+    for d in [a.out] + a.compare:
+        if not os.path.exists(os.path.join(d, "profiles.csv")):
+            ap.error(f"{d}: no profiles.csv (not a two-phase granflow run folder?)")
+    if a.label and len(a.label) != 1 + len(a.compare):
+        ap.error(f"--label takes one label per run: {1 + len(a.compare)} (OUTDIR and each "
+                 f"--compare DIR), got {len(a.label)}")
+    figstyle.check_arguments(ap, a)
+    return a
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("out")
-    ap.add_argument("--compare", nargs="*", default=[])
-    ap.add_argument("--time-shift", type=float, default=None)
-    a = ap.parse_args()
-    if not os.path.exists(os.path.join(a.out, "profiles.csv")):
-        sys.exit(f"{a.out}: no profiles.csv (not a two-phase granflow run?)")
-    main(a.out, a.compare, a.time_shift)
+    a = parse_args()
+    where = main(a.out, a.compare, a.time_shift, a.label, a.figures, a.format, a.dpi)
+    print(f"plot_collapse: figures in {where}")

@@ -10,14 +10,10 @@ fail are written as such (and listed at the top), the script does not stop on th
 """
 import argparse
 import csv
-import json
 import math
 import os
 import re
-import struct
 import sys
-import tomllib
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
@@ -26,6 +22,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import granflow_run as gr  # noqa: E402
+
 FIG = "docs/figures"
 GHIA = "/work/shared/reference"
 DPI = 100
@@ -45,12 +44,6 @@ def read_text(path):
         return f.read()
 
 
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
-
-
 def read_kv(path):
     d = {}
     for line in read_text(path).splitlines():
@@ -66,56 +59,21 @@ def read_timings(path):
 
 
 def read_ghia(name):
-    lines = [ln for ln in read_text(os.path.join(GHIA, name)).splitlines()
-             if ln.strip() and not ln.startswith("#")]
-    head = lines[0].split(",")
-    data = np.array([[float(x) for x in ln.split(",")] for ln in lines[1:]])
-    return {h: data[:, k] for k, h in enumerate(head)}
+    """A column file of Ghia, Ghia & Shin (1982) ('#' comment lines) as a granflow_run.Table."""
+    return gr.read_csv(os.path.join(GHIA, name))
 
 
 def probe_blocks(path):
-    """Probe file t,x,y,<fields>: list of (t, dict of arrays), one per output time."""
-    d = read_csv(path)
-    out = []
-    for t in np.unique(d["t"]):
-        m = d["t"] == t
-        out.append((t, {k: v[m] for k, v in d.items()}))
-    return out
+    """Probe file t,x,y,<fields>: list of (t, Table of that time's rows), one per output time."""
+    return gr.read_csv(path).blocks()
 
 
-def read_vtr(path):
-    """granflow's RectilinearGrid files: appended raw, UInt64 headers, Float64 data."""
-    raw = open(path, "rb").read()
-    k = raw.index(b"<AppendedData")
-    k = raw.index(b"_", k) + 1
-    root = ET.fromstring(raw[:raw.index(b"<AppendedData")].decode() + "</VTKFile>")
-
-    def block(off):
-        n = struct.unpack_from("<Q", raw, k + off)[0]
-        return np.frombuffer(raw, dtype="<f8", count=n // 8, offset=k + off + 8)
-
-    arrays = {}
-    for da in root.iter("DataArray"):
-        if da.get("format") == "appended":
-            arrays[da.get("Name")] = (block(int(da.get("offset"))),
-                                      int(da.get("NumberOfComponents", "1")))
-    coords = [e for e in root.iter("Coordinates")][0]
-    xs = [block(int(da.get("offset"))) for da in coords.iter("DataArray")]
-    return xs, arrays
-
-
-def pvd_files(out):
-    root = ET.parse(os.path.join(out, "fields.pvd")).getroot()
-    return [(float(e.get("timestep")), os.path.join(out, e.get("file")))
-            for e in root.iter("DataSet")]
-
-
-def cell_field(vtr, name):
-    (xn, yn, _), arrays = vtr
-    a, nc = arrays[name]
-    nx, ny = len(xn) - 1, len(yn) - 1
-    xc, yc = 0.5 * (xn[1:] + xn[:-1]), 0.5 * (yn[1:] + yn[:-1])
-    return xc, yc, a.reshape(ny, nx) if nc == 1 else a.reshape(ny, nx, nc)
+def first_last_phi(out):
+    """(x, y, phi at the first snapshot, phi at the last, snapshot list) of a run's VTK series:
+    cell centres (m) and the level set (ny, nx)."""
+    files = gr.read_pvd(os.path.join(out, "fields.pvd"))
+    f0, f1 = gr.read_vtr(files[0][1]), gr.read_vtr(files[-1][1])
+    return f0.xc, f0.yc, f0["phi"], f1["phi"], files
 
 
 def md_table(head, rows):
@@ -222,7 +180,7 @@ def section_levelset(out, build, tim):
     for name, case, ax in (("zalesak", "Zalesak disk, one turn", axs[0]),
                            ("single_vortex", "single vortex, T = 8", axs[1])):
         o = os.path.join(out, name)
-        js = json.load(open(os.path.join(o, "summary.json")))
+        js = gr.Run(o).summary
         cmds.append(f"`{build}/granflow run cases/verify/{name}.toml --out {o}` "
                     f"({fmt_s(tim[name]['wall_s'])})")
         r = [case, js["nx"], js["steps"], f"{js['volume_change_pct']:.3f}"]
@@ -230,9 +188,7 @@ def section_levelset(out, build, tim):
         r.append(f"{js['interface_l1_error_m2']:.3e}" if "interface_l1_error_m2" in js else "n/a")
         r.append(f"{js['wall_s']:.1f}")
         rows.append(r)
-        files = pvd_files(o)
-        x, y, p0 = cell_field(read_vtr(files[0][1]), "phi")
-        _, _, p1 = cell_field(read_vtr(files[-1][1]), "phi")
+        x, y, p0, p1, files = first_last_phi(o)
         ax.contour(x, y, p0, levels=[0], colors="k", linewidths=1.0)
         ax.contour(x, y, p1, levels=[0], colors="tab:red", linewidths=1.0)
         ax.plot([], [], "k", label=f"initial (t = {files[0][0]:g} s)")
@@ -246,7 +202,7 @@ def section_levelset(out, build, tim):
         ax.set_ylabel("y (m)")
         if name == "single_vortex":  # the stretched filament at t = T/2, whole domain
             tm, fm = min(files, key=lambda e: abs(e[0] - 0.5 * files[-1][0]))
-            _, _, pm = cell_field(read_vtr(fm), "phi")
+            pm = gr.read_vtr(fm)["phi"]
             axs[2].contour(x, y, p0, levels=[0], colors="k", linewidths=0.8)
             axs[2].contour(x, y, pm, levels=[0], colors="tab:blue", linewidths=1.0)
             axs[2].plot([], [], "k", label="t = 0 s")
@@ -302,7 +258,7 @@ def section_ns(out, build, tim):
     rows, steady_rows, figs = [], [], []
     for re_, name in ((100, "cavity_re100"), (1000, "cavity_re1000")):
         o = os.path.join(out, name)
-        case = tomllib.load(open(os.path.join(o, "case.toml"), "rb"))
+        case = gr.Run(o).case
         U = float(case["boundary"]["top"]["velocity"])
         bu = probe_blocks(os.path.join(o, "probes", "u_vertical_centerline.csv"))
         bv = probe_blocks(os.path.join(o, "probes", "v_horizontal_centerline.csv"))
@@ -331,7 +287,7 @@ def section_ns(out, build, tim):
         k5 = max(0, int(np.searchsorted([b[0] for b in bu], tl - 5.0 - 1e-9)))
         c5 = max(np.max(np.abs(lu["u"] - bu[k5][1]["u"])),
                  np.max(np.abs(lv["v"] - bv[k5][1]["v"]))) / U
-        d = read_csv(os.path.join(o, "diagnostics.csv"))
+        d = gr.read_csv(os.path.join(o, "diagnostics.csv"))
         j5 = np.searchsorted(d["t"], d["t"][-1] - 5.0 - 1e-9)
         dke = abs(d["kinetic_energy"][-1] - d["kinetic_energy"][j5]) / d["kinetic_energy"][-1]
         steady_rows.append([re_, f"{bu[-2][0]:g} → {tl:g}", f"{c1:.1e}", f"{r:.3f}",
@@ -384,8 +340,8 @@ def section_ns(out, build, tim):
 # ------------------------------------------------------------------------- 3. rest layer
 def section_rest(out, build, tim):
     o = os.path.join(out, "rest_layer")
-    d = read_csv(os.path.join(o, "diagnostics.csv"))
-    js = json.load(open(os.path.join(o, "summary.json")))
+    run = gr.Run(o)
+    d, js = run.diagnostics, run.summary
     umax = d["max_speed"].max()
     md = ["\n## 3. Heavy layer at rest (1550 kg/m^3 under air, 32^2, 1000 steps of 1e-4 s)\n\n"]
     md.append(f"Command: `{build}/granflow run cases/verify/rest_layer.toml --out {o}` "
@@ -481,17 +437,18 @@ def section_dambreak(out, build, tim):
     for n, style in ((48, "o-"), (96, "s-")):
         name = f"dambreak_n{n}"
         o = os.path.join(out, name)
-        case = tomllib.load(open(os.path.join(o, "case.toml"), "rb"))
+        run = gr.Run(o)
+        case = run.case
         ini = case["initial"]
         a = ini["x1"] - ini["x0"]
         H = ini["y1"] - ini["y0"]
         g = abs(case["physics"]["gravity"][1])
         Lx = case["domain"]["Lx"]
-        d = read_csv(os.path.join(o, "diagnostics.csv"))
+        d = run.diagnostics
         fr = np.column_stack([d["t"], d["front_x"]])
         T = fr[:, 0] * math.sqrt(2 * g / a)
         Z = fr[:, 1] / a
-        js = json.load(open(os.path.join(o, "summary.json")))
+        js = run.summary
         keep = T <= 4.0
         ax.plot(T[keep], Z[keep], style, ms=2.5, lw=1,
                 label=f"granflow, grid.n = {case['grid']['n']} ({js['nx']}×{js['ny']} cells)")

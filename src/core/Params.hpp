@@ -1,7 +1,7 @@
 #pragma once
 // The typed parameter registry behind case files.
 //
-// Every parameter is declared ONCE (core/Case.cpp: case_params()) with its dotted key, type,
+// Every parameter is declared ONCE (setup/Schema.cpp: case_params()) with its dotted key, type,
 // SI unit, default, allowed range and help text. From that single declaration the registry
 //   * loads a TOML file and `--set key=value` overrides (the override wins),
 //   * validates every value and collects ALL problems before reporting them, each naming the
@@ -14,7 +14,7 @@
 // validated the same way; their messages name the item, e.g. `probe[2].x1` (numbered from 1).
 //
 // Values are looked up by string only while the case is read; solvers use the plain struct
-// CaseConfig (core/Case.hpp) filled from here once.
+// CaseConfig (setup/Case.hpp) filled from here once.
 #include <array>
 #include <cstddef>
 #include <functional>

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/Error.hpp"
-#include "diagnostics/LocalArray.hpp"
+#include "grid/Local.hpp"
 #include "levelset/Heaviside.hpp"
 
 namespace gf::diag {

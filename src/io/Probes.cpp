@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "core/Error.hpp"
-#include "diagnostics/LocalArray.hpp"
+#include "grid/Local.hpp"
 #include "io/IoError.hpp"
 
 namespace gf::io {
@@ -187,12 +187,12 @@ void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta,
 
   // Ghosted local copies, only of what some probe samples (the exchange is collective, so
   // this choice is the same on all ranks).
-  std::vector<std::unique_ptr<diag::LocalCells>> cells(nq);
+  std::vector<std::unique_ptr<LocalCells>> cells(nq);
   for (std::size_t q = 0; q < nq; ++q)
     if (cellvec[q] && needs_[q])
-      cells[q] = std::make_unique<diag::LocalCells>(g_.dm_cell(), cellvec[q]);
-  std::unique_ptr<diag::LocalVelocity> v;
-  if (needs_[kU] || needs_[kV]) v = std::make_unique<diag::LocalVelocity>(g_, vel);
+      cells[q] = std::make_unique<LocalCells>(g_.dm_cell(), cellvec[q]);
+  std::unique_ptr<LocalVelocity> v;
+  if (needs_[kU] || needs_[kV]) v = std::make_unique<LocalVelocity>(g_, vel);
 
   // One buffer for all probes: -0.0 where this rank does not own the point (see the header).
   std::size_t total = 0;
@@ -206,7 +206,7 @@ void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta,
       const Axis cx = axis(x, b.hx, 0.5, b.nx, b.periodic_x), cy = axis(y, b.hy, 0.5, b.ny);
       double u = 0, w = 0;
       if (v) {
-        const diag::LocalVelocity& vv = *v;
+        const LocalVelocity& vv = *v;
         // periodic x: the u-faces are nx samples with period nx (face nx = face 0)
         u = bilinear(axis(x, b.hx, 0.0, b.periodic_x ? b.nx : b.nx + 1, b.periodic_x), cy,
                      [&](PetscInt j, PetscInt i) { return vv[j][i].u; });
@@ -220,7 +220,7 @@ void ProbeWriter::write(double t, Vec phi, Vec rho, Vec vel, Vec p, Vec eta,
         else if (q == kV) val = w;
         else if (q == kSpeed) val = std::sqrt(u * u + w * w);
         else {
-          const diag::LocalCells& c = *cells[q];
+          const LocalCells& c = *cells[q];
           val = bilinear(cx, cy, [&](PetscInt j, PetscInt i) { return c[j][i]; });
         }
         mine[at + m] = val;

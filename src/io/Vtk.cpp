@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "core/Error.hpp"
-#include "diagnostics/LocalArray.hpp"
+#include "grid/Local.hpp"
 #include "io/Csv.hpp"
 #include "io/IoError.hpp"
 
@@ -72,7 +72,7 @@ void cell_velocity(const Grid& g, Vec vel, Vec uc, Vec vc, Vec speed) {
   if (uc) require_layout(g, uc, ubs, "cell_velocity (uc)");
   if (vc) require_layout(g, vc, 1, "cell_velocity (vc)");
   if (speed) require_layout(g, speed, 1, "cell_velocity (speed)");
-  diag::LocalVelocity v(g, vel);
+  LocalVelocity v(g, vel);
   // Owned values of a global Vec are stored i-fastest from (xs, ys), `bs` per cell.
   PetscScalar *pu = nullptr, *pv = nullptr, *ps = nullptr;
   if (uc) GF_PETSC(VecGetArray(uc, &pu));
@@ -82,7 +82,7 @@ void cell_velocity(const Grid& g, Vec vel, Vec uc, Vec vc, Vec speed) {
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       const PetscInt k = (j - b.ys) * b.xm + (i - b.xs);
       double cu, cv;
-      diag::cell_centre_velocity(v, i, j, cu, cv);
+      cell_centre_velocity(v, i, j, cu, cv);
       if (pu && ubs == 2) {
         pu[2 * k] = cu;
         pu[2 * k + 1] = cv;

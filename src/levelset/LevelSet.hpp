@@ -92,8 +92,6 @@ class Redistancer {
   // (1 - cos(a/2) for two fronts meeting at an angle a: 0.009 at the 15 deg slopes of a pile,
   // 0.29 at a right-angled corner).
   double distance_defect(Vec phi);
-  int last_iterations() const { return last_iters_; }
-  int iterations() const { return iters_; }
 
  private:
   const Grid& g_;
@@ -142,8 +140,26 @@ struct Props {
   double eps;                // half width of the regularised Heaviside, m
 };
 
-// Cell-centred rho (eq. 25, regularised Heaviside) and eta (harmonic mean above).
-void update_properties(const Grid& g, Vec phi, const Props& pr, Vec rho, Vec eta);
+// Cell-centred rho (eq. 25, regularised Heaviside) and eta (harmonic mean above); with
+// eta_node (a dm_cell Vec), also eta at every node (i hx, j hy) the rank owns, stored at (i, j),
+// from the height fraction of the node's dual cell.
+void update_properties(const Grid& g, Vec phi, const Props& pr, Vec rho, Vec eta,
+                       Vec eta_node = nullptr);
+
+// The same harmonic means with a granular viscosity that varies from cell to cell (the mu(I)
+// viscosity, eq. 11): eta at the cells from eta_gran there; eta_node at the interior nodes
+// (1 <= i < nx, 0 <= i < nx with periodic x; 1 <= j < ny) from the mean eta_gran of the node's
+// four cells. phi = nullptr: one phase (every height fraction 0).
+void mix_viscosity(const Grid& g, Vec phi, double eta_air, Vec eta_gran, Vec eta, Vec eta_node);
+
+// The granular volume fraction 1 - H_eps(phi) of each cell (eq. 25), into c (dm_cell).
+void granular_fraction(const Grid& g, Vec phi, double eps, Vec c);
+
+// Where the yield stress and the Coulomb wall friction act (rheology::yield_stress): support = 0,
+// the granular phase phi < 0 (the paper: kappa = 0 in the air, eq. 18), weight 1; support = eps,
+// wherever eq. 25 gives the cell granular mass (phi < eps, rheology.yield_support = "mass"),
+// weighted by its granular fraction 1 - H_eps(phi). -1 elsewhere. Into w (dm_cell).
+void yield_support(const Grid& g, Vec phi, double support, Vec w);
 
 // ---------------------------------------------------------------------------------------------
 // 4. Diagnostics (collective).

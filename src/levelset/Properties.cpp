@@ -10,8 +10,10 @@
 // are sub-sampled.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/Error.hpp"
+#include "grid/Local.hpp"
 #include "levelset/Heaviside.hpp"
 #include "levelset/LevelSet.hpp"
 
@@ -92,25 +94,6 @@ double theta_rect(const Box& b, const PetscScalar* const* p, double x0, double x
   return abs > 0 ? pos / abs : 0.5;  // phi == 0 on all of K: the interface itself
 }
 
-// Ghosted copy of a cell field (the properties need the neighbours of owned cells).
-struct LocalCopy {
-  DM dm;
-  Vec loc = nullptr;
-  const PetscScalar* const* a = nullptr;
-  LocalCopy(DM d, Vec global) : dm(d) {
-    GF_PETSC(DMGetLocalVector(dm, &loc));
-    GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, loc));
-    GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, loc));
-    GF_PETSC(DMDAVecGetArrayRead(dm, loc, &a));
-  }
-  ~LocalCopy() {
-    DMDAVecRestoreArrayRead(dm, loc, &a);
-    DMRestoreLocalVector(dm, &loc);
-  }
-  LocalCopy(const LocalCopy&) = delete;
-  LocalCopy& operator=(const LocalCopy&) = delete;
-};
-
 }  // namespace
 
 double height_fraction_cell(const Box& b, const PetscScalar* const* phi_local, PetscInt i,
@@ -135,19 +118,79 @@ double harmonic_viscosity(double theta, double eta_air, double eta_gran) {
   return 1.0 / (theta / eta_air + (1.0 - theta) / eta_gran);
 }
 
-void update_properties(const Grid& g, Vec phi, const Props& pr, Vec rho, Vec eta) {
+void update_properties(const Grid& g, Vec phi, const Props& pr, Vec rho, Vec eta, Vec eta_node) {
   const Box& b = g.box();
-  LocalCopy p(g.dm_cell(), phi);
+  const LocalCells p(g.dm_cell(), phi);
   PetscScalar **r, **e;
   GF_PETSC(DMDAVecGetArray(g.dm_cell(), rho, &r));
   GF_PETSC(DMDAVecGetArray(g.dm_cell(), eta, &e));
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      r[j][i] = density(p.a[j][i], pr.eps, pr.rho_air, pr.rho_gran);  // eq. 25
-      e[j][i] = harmonic_viscosity(height_fraction_cell(b, p.a, i, j), pr.eta_air, pr.eta_gran);
+      r[j][i] = density(p[j][i], pr.eps, pr.rho_air, pr.rho_gran);  // eq. 25
+      e[j][i] = harmonic_viscosity(height_fraction_cell(b, p.array(), i, j), pr.eta_air,
+                                   pr.eta_gran);
     }
   GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), eta, &e));
   GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), rho, &r));
+  if (!eta_node) return;
+  // Shear stresses live at the nodes: their viscosity is the harmonic mean with the height
+  // fraction of the dual cell around the node (section 3.1).
+  PetscScalar** en;
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), eta_node, &en));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i)
+      en[j][i] = harmonic_viscosity(height_fraction_node(b, p.array(), i, j), pr.eta_air,
+                                    pr.eta_gran);
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), eta_node, &en));
+}
+
+void mix_viscosity(const Grid& g, Vec phi, double eta_air, Vec eta_gran, Vec eta, Vec eta_node) {
+  const Box& b = g.box();
+  const LocalCells es(g.dm_cell(), eta_gran);
+  std::optional<LocalCells> ph;
+  if (phi) ph.emplace(g.dm_cell(), phi);
+  PetscScalar **ec, **en;
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), eta, &ec));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), eta_node, &en));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double thc = ph ? height_fraction_cell(b, ph->array(), i, j) : 0.0;
+      ec[j][i] = harmonic_viscosity(thc, eta_air, es[j][i]);
+      if (!b.wall_u(i) && j >= 1) {  // interior node: mean of the four surrounding cells
+        const double esn = 0.25 * (es[j][i] + es[j][i - 1] + es[j - 1][i] + es[j - 1][i - 1]);
+        const double thn = ph ? height_fraction_node(b, ph->array(), i, j) : 0.0;
+        en[j][i] = harmonic_viscosity(thn, eta_air, esn);
+      }
+    }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), eta_node, &en));
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), eta, &ec));
+}
+
+void granular_fraction(const Grid& g, Vec phi, double eps, Vec c) {
+  const Box& b = g.box();
+  const PetscScalar** ph;
+  PetscScalar** ca;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), phi, &ph));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), c, &ca));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) ca[j][i] = 1.0 - heaviside(ph[j][i], eps);
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), c, &ca));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &ph));
+}
+
+void yield_support(const Grid& g, Vec phi, double support, Vec w) {
+  const Box& b = g.box();
+  const PetscScalar** ph;
+  PetscScalar** wa;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), phi, &ph));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), w, &wa));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double p = ph[j][i];
+      wa[j][i] = p < support ? (support > 0 ? 1.0 - heaviside(p, support) : 1.0) : -1.0;
+    }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), w, &wa));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &ph));
 }
 
 double granular_area(const Grid& g, Vec phi, double eps) {
@@ -163,14 +206,14 @@ double granular_area(const Grid& g, Vec phi, double eps) {
 
 double interface_l1_error(const Grid& g, Vec phi, Vec phi_exact) {
   const Box& b = g.box();
-  LocalCopy p(g.dm_cell(), phi), q(g.dm_cell(), phi_exact);
+  const LocalCells p(g.dm_cell(), phi), q(g.dm_cell(), phi_exact);
   double err = 0;
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i)
       for_each_piece(b, b.xf(i), b.xf(i + 1), b.yf(j), b.yf(j + 1),
                      [&](double xa, double xb, double ya, double yb) {
         const double xm = 0.5 * (xa + xb), ym = 0.5 * (ya + yb);
-        const Patch P(b, p.a, xm, ym), Q(b, q.a, xm, ym);
+        const Patch P(b, p.array(), xm, ym), Q(b, q.array(), xm, ym);
         const double cp[4] = {P(xa, ya), P(xb, ya), P(xa, yb), P(xb, yb)};
         const double cq[4] = {Q(xa, ya), Q(xb, ya), Q(xa, yb), Q(xb, yb)};
         const double p_lo = std::min({cp[0], cp[1], cp[2], cp[3]});

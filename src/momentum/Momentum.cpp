@@ -21,7 +21,8 @@ TimeCoeffs TimeCoeffs::make(double dt, double dt_old, bool first) {
   return c;
 }
 
-Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol) : g_(g), bc_(bc) {
+Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol)
+    : g_(g), bc_(bc), walls_(g, bc) {
   // Preallocate only: the box stencil of dm_visc reserves 18 slots per row but a row has 9
   // entries; explicit zeros in the pattern would make BoomerAMG's coarse operators needlessly
   // dense (measured: 4x slower V-cycles). The first assembly fixes the true pattern.
@@ -29,28 +30,21 @@ Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol) : g_(g), 
   GF_PETSC(DMCreateMatrix(g.dm_visc(), &A_));
   GF_PETSC(MatSetOption(A_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   GF_PETSC(MatSetOption(A_, MAT_SYMMETRIC, PETSC_TRUE));
-  GF_PETSC(KSPCreate(g.comm(), &ksp_));
-  GF_PETSC(KSPSetOptionsPrefix(ksp_, "visc_"));
-  GF_PETSC(KSPSetType(ksp_, KSPCG));
-  PC pc;
-  GF_PETSC(KSPGetPC(ksp_, &pc));
   // Default CG + Jacobi: with the mass term rho a0/dt on the diagonal, and eta/h^2 of order
   // rho/dt at the paper's viscosities, the operator is well conditioned after diagonal
   // scaling (measured: 29 iterations at 6 ms per solve on the 128^2 cavity, against 21 ms with
   // BoomerAMG on the vector system). Large viscosity contrasts (mu(I)) need
   // -visc_pc_type hypre (SOLVER_NOTES.md: Jacobi takes 650 iterations at eta = 5000).
-  GF_PETSC(PCSetType(pc, PCJACOBI));
-  GF_PETSC(KSPSetTolerances(ksp_, rtol, 1e-50, PETSC_DEFAULT, 1000));
-  GF_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
-  GF_PETSC(KSPSetFromOptions(ksp_));
-  // The local solves (begin_local) read the same -visc_ options.
-  GF_PETSC(KSPCreate(g.comm(), &kloc_));
-  GF_PETSC(KSPSetOptionsPrefix(kloc_, "visc_"));
-  GF_PETSC(KSPSetType(kloc_, KSPCG));
-  GF_PETSC(KSPGetPC(kloc_, &pc));
-  GF_PETSC(PCSetType(pc, PCJACOBI));
-  GF_PETSC(KSPSetInitialGuessNonzero(kloc_, PETSC_TRUE));
-  GF_PETSC(KSPSetFromOptions(kloc_));
+  ksp_ = std::make_unique<linsolve::Krylov>(
+      g.comm(), linsolve::KrylovSetup{"visc_", KSPCG, PCJACOBI, rtol, true, false,
+                                      "viscous solve (prefix -visc_)",
+                                      "try a smaller time step or -visc_pc_type hypre"});
+  // The local solves (begin_local) read the same -visc_ options; their tolerance is set there.
+  kloc_ = std::make_unique<linsolve::Krylov>(
+      g.comm(), linsolve::KrylovSetup{"visc_", KSPCG, PCJACOBI, std::nullopt, true, false,
+                                      "local viscous solve (prefix -visc_, "
+                                      "solver.viscous_local_margin)",
+                                      "try solver.viscous_local_margin = 0"});
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &wall_rhs_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &conv_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &conv_old_));
@@ -60,17 +54,14 @@ Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol) : g_(g), 
   GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lp_));
   GF_PETSC(DMCreateLocalVector(g.dm_vel(), &lvel_));
   GF_PETSC(DMCreateLocalVector(g.dm_vel(), &lvel_old_));
-  GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lphi_));
 }
 
 Predictor::~Predictor() {
-  for (Vec* v : {&lwp_, &lwk_, &lwe_, &wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_,
-                 &lp_, &lvel_, &lvel_old_, &lphi_})
+  for (Vec* v : {&wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_, &lp_, &lvel_,
+                 &lvel_old_})
     VecDestroy(v);
   end_local();
   VecDestroy(&work_);
-  KSPDestroy(&kloc_);
-  KSPDestroy(&ksp_);
   MatDestroy(&A_);
 }
 
@@ -85,11 +76,11 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), leta_, &ec));
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), letan_, &en));
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), wall_rhs_, &wr));
-  const PetscScalar** ph = nullptr;
-  if (have_phase_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lphi_, &ph));
+  const boundary::CoulombWalls::Phase phase(walls_);
+  const PetscScalar* const* ph = phase.array();
   // A granular face on a frictional wall has the Coulomb traction instead (add_plastic).
   auto cw = [&](const WallBC& w, double e, double d, int side, PetscInt i, PetscInt j) {
-    return coulomb_face(ph, side, i, j) ? 0.0 : wall_coefficient(w, e, d);
+    return walls_.coulomb_face(ph, side, i, j) ? 0.0 : wall_coefficient(w, e, d);
   };
   GF_PETSC(MatZeroEntries(A_));
 
@@ -189,14 +180,13 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         GF_PETSC(MatSetValuesStencil(A_, 1, &row, n, col, val, INSERT_VALUES));
       }
     }
-  if (have_phase_) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lphi_, &ph));
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), wall_rhs_, &wr));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), letan_, &en));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), leta_, &ec));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
   GF_PETSC(MatAssemblyBegin(A_, MAT_FINAL_ASSEMBLY));
   GF_PETSC(MatAssemblyEnd(A_, MAT_FINAL_ASSEMBLY));
-  GF_PETSC(KSPSetOperators(ksp_, A_, A_));
+  ksp_->set_operator(A_);
 }
 
 void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoeffs& c,
@@ -252,25 +242,8 @@ void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoe
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &lv));
 }
 
-namespace {
-// The iterations of the solve just made by ksp; RunError "<what> did not converge: <reason>
-// after N iterations; <hint>" if it diverged.
-int iterations_or_throw(KSP ksp, const std::string& what, const std::string& hint) {
-  KSPConvergedReason reason;
-  PetscInt its;
-  GF_PETSC(KSPGetConvergedReason(ksp, &reason));
-  GF_PETSC(KSPGetIterationNumber(ksp, &its));
-  if (reason < 0)
-    throw RunError(what + " did not converge: " + std::string(KSPConvergedReasons[reason]) +
-                   " after " + std::to_string(its) + " iterations; " + hint);
-  return static_cast<int>(its);
-}
-}  // namespace
-
 int Predictor::solve(Vec rhs, Vec u_tilde) {
-  GF_PETSC(KSPSolve(ksp_, rhs, u_tilde));
-  return iterations_or_throw(ksp_, "viscous solve (prefix -visc_)",
-                             "try a smaller time step or -visc_pc_type hypre");
+  return ksp_->solve(rhs, u_tilde);
 }
 
 void Predictor::gather_local(Vec full, Vec sub) const {
@@ -322,24 +295,20 @@ void Predictor::begin_local(const std::vector<PetscInt>& rows, Vec rhs, Vec u) {
   // residual lives in R (exactly so for Jacobi).
   PetscReal rtol, atol, dtol, bnorm;
   PetscInt maxit;
-  GF_PETSC(KSPGetTolerances(ksp_, &rtol, &atol, &dtol, &maxit));
+  GF_PETSC(KSPGetTolerances(ksp_->ksp(), &rtol, &atol, &dtol, &maxit));
   PC pc;
-  GF_PETSC(KSPGetPC(ksp_, &pc));
+  GF_PETSC(KSPGetPC(ksp_->ksp(), &pc));
   GF_PETSC(PCApply(pc, rhs, work_));
   GF_PETSC(VecNorm(work_, NORM_2, &bnorm));
-  GF_PETSC(KSPSetOperators(kloc_, Aloc_, Aloc_));
-  GF_PETSC(KSPSetTolerances(kloc_, 0.0, std::max(rtol * bnorm, atol), dtol, maxit));
+  kloc_->set_operator(Aloc_);
+  GF_PETSC(KSPSetTolerances(kloc_->ksp(), 0.0, std::max(rtol * bnorm, atol), dtol, maxit));
 }
 
 int Predictor::solve_local(Vec rhs, Vec u) {
   gather_local(rhs, bloc_);
   GF_PETSC(VecAXPY(bloc_, -1.0, cloc_));
   gather_local(u, xloc_);
-  GF_PETSC(KSPSolve(kloc_, bloc_, xloc_));
-  const int its = iterations_or_throw(kloc_,
-                                      "local viscous solve (prefix -visc_, "
-                                      "solver.viscous_local_margin)",
-                                      "try solver.viscous_local_margin = 0");
+  const int its = kloc_->solve(bloc_, xloc_);
   GF_PETSC(VecScatterBegin(loc_sct_, xloc_, u, INSERT_VALUES, SCATTER_REVERSE));
   GF_PETSC(VecScatterEnd(loc_sct_, xloc_, u, INSERT_VALUES, SCATTER_REVERSE));
   return its;
@@ -347,7 +316,7 @@ int Predictor::solve_local(Vec rhs, Vec u) {
 
 void Predictor::end_local() {
   // The next R has other sizes: the KSP and its preconditioner drop the old operator.
-  if (kloc_) KSPReset(kloc_);
+  if (kloc_) KSPReset(kloc_->ksp());
   for (Vec* v : {&bloc_, &xloc_, &cloc_}) VecDestroy(v);
   MatDestroy(&Aloc_);
   VecScatterDestroy(&loc_sct_);

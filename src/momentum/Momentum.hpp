@@ -18,8 +18,12 @@
 #include <array>
 #include <vector>
 
+#include <memory>
+
 #include "boundary/Boundary.hpp"
+#include "boundary/Coulomb.hpp"
 #include "grid/Grid.hpp"
+#include "linsolve/Krylov.hpp"
 
 namespace gf::momentum {
 
@@ -73,20 +77,15 @@ class Predictor {
   void end_local();
 
   // ---- The plastic part of eq. 31 (rheology plugs in here; see Plastic.cpp) ----
-  // Coulomb friction coefficient tan(alpha_b) per wall, in the order left, right, bottom, top
-  // (0 = none). Where the granular phase (phi < support on the face, m; 0 = the sign of phi,
-  // rheology.yield_support) touches such a wall, the wall traction is -kappa_b s_t (eqs. 22-23,
-  // 30) instead of the Navier/no-slip/free-slip law.
-  void set_wall_friction(const std::array<double, 4>& tan_alpha_b, double support = 0) {
-    tan_b_ = tan_alpha_b;
-    support_ = support;
-  }
-  bool has_wall_friction() const;
-  // Tells assemble() and the plastic terms which wall faces are granular (phi: global Vec).
-  void set_phase(Vec phi);
+  // The Coulomb walls (boundary/Coulomb.hpp): their friction, the phase that says which wall
+  // faces are granular (set_phase once per step, before assemble()), their yield stress and
+  // projection. A granular face on a frictional wall has the Coulomb traction -kappa_b s_t
+  // (add_plastic) instead of its wall condition.
+  boundary::CoulombWalls& walls() { return walls_; }
+  const boundary::CoulombWalls& walls() const { return walls_; }
   // rhs += div(kappa S) on the faces, plus the Coulomb wall tractions -kappa_b s_t.
   // kappa: cell yield stress (Pa); S: dm_ten (Sxx, Sxy, Syy); kappa_b, s_wall: dm_vel wall
-  // storage (see below).
+  // storage (boundary/Coulomb.hpp).
   // S_node (dm_node, optional: rheology.plastic_grid = "cell_node"): the node copy of S; then
   // the plastic stress is half the cell copy's plus half the node copy's (the node Sxx, Syy
   // reach the cells as the mean of their four corners; the node Sxy is the shear stress at the
@@ -105,69 +104,35 @@ class Predictor {
   }
   void clear_plastic_region() {
     reg_ = {-kUnbounded, kUnbounded, -kUnbounded, kUnbounded};
-    wall_cached_ = false;
+    walls_.clear_cache();
   }
-  // Ghosted copies of p, kappa and eta for wall_yield, which the fixed point calls in every
-  // iteration with the same three: made once per step here, used until clear_plastic_region().
-  void cache_wall_inputs(Vec p, Vec kappa, Vec eta);
   // D(u) at the cell centres (dm_ten: Dxx, Dxy, Dyy), with the shear at wall nodes from the
   // wall condition (no slip, Navier: from the wall velocity; free slip, Coulomb: zero).
   // D_node (dm_node, optional): D(u) at the nodes for the node copy of S: Dxy = half the node
   // shear rate (on a wall node: from the no-slip wall velocity; 0 on other walls and at the
   // corners), Dxx, Dyy = the mean over the node's cells of the cell values.
   void strain_rate(Vec vel, Vec eta, Vec D, Vec D_node = nullptr);
-  // Wall storage in a dm_vel Vec: the bottom / top wall value of the u-face (i, 0) / (i, ny-1)
-  // in component u at (i, 0) / (i, ny-1); the left / right wall value of the v-face (0, j) /
-  // (nx-1, j) in component v at (0, j) / (nx-1, j) (none with periodic x). Faces without
-  // Coulomb friction or not granular hold 0.
-  // kappa_b = tan(alpha_b) (-T_n)^+ (eq. 22), -T_n = p^n - 2 eta D_nn - kappa S_nn at the cells
-  // next to the wall (the normal stress on the wall, with the current D(u~) and S: it is
-  // updated in every iteration of the fixed point, as kappa_b^{n+1} in eq. 31).
-  void wall_yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b);
-  // s_t <- P_b(s_t + r_b kappa_b u_t + theta (s_t^n - s_t)) on the granular Coulomb faces (eq. 31),
-  // r_b = r_factor (rho a0 h / dt + 2 eta / h) / kappa_b^2. Returns max |change| (collective).
-  // Where the granular phase touches each frictional wall: the length (m) where it sticks
-  // (|s_t| < 1: the wall stress is below the Coulomb threshold, eq. 23) and where it slides
-  // (|s_t| = 1, eq. 22). Index: side (left, right, bottom, top); collective.
-  struct WallContact {
-    std::array<double, 4> stick_m{0, 0, 0, 0}, slide_m{0, 0, 0, 0};
-    // Per metre of depth, N/m: the granular normal load carried by the wall, sum of
-    // (-T_n)^+ over its Coulomb faces, and the friction force sum kappa_b s_t (signed, along +x
-    // on the bottom and top, +y on the side walls).
-    std::array<double, 4> normal_N{0, 0, 0, 0}, friction_N{0, 0, 0, 0};
-  };
-  WallContact wall_contact(Vec s_wall, Vec kappa_b) const;
-  double update_wall(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,
-                     double a0_over_dt, double theta, double r_factor);
-
   Mat matrix() const { return A_; }
 
  private:
-  bool wall_cached_ = false;
-  Vec lwp_ = nullptr, lwk_ = nullptr, lwe_ = nullptr;  // cache_wall_inputs
   struct Region {
     PetscInt i0, i1, j0, j1;
   } reg_{-kUnbounded, kUnbounded, -kUnbounded, kUnbounded};
   const Grid& g_;
   Boundaries bc_;
   Mat A_ = nullptr;
-  KSP ksp_ = nullptr;
+  std::unique_ptr<linsolve::Krylov> ksp_;
   // begin_local(): the rows R, the sub-matrix A_RR, its KSP, and c_R = A_RS u_S.
   VecScatter loc_sct_ = nullptr;  // the rows R of a dm_vel Vec <-> the sub-problem's Vecs
   Mat Aloc_ = nullptr;
-  KSP kloc_ = nullptr;
+  std::unique_ptr<linsolve::Krylov> kloc_;
   Vec bloc_ = nullptr, xloc_ = nullptr, cloc_ = nullptr, work_ = nullptr;
   void gather_local(Vec full, Vec sub) const;
   Vec wall_rhs_ = nullptr;  // moving-wall contributions c U / h, depend on eta
   Vec lrho_ = nullptr, leta_ = nullptr, letan_ = nullptr, lvel_ = nullptr, lvel_old_ = nullptr,
       lp_ = nullptr;
   Vec conv_ = nullptr, conv_old_ = nullptr;
-  std::array<double, 4> tan_b_{0, 0, 0, 0};  // left, right, bottom, top
-  double support_ = 0;                       // m, a wall face is granular where phi < this
-  Vec lphi_ = nullptr;                       // local phi of the current step (granular faces)
-  bool have_phase_ = false;
-  // Is the wall face granular and frictional? side: 0 left, 1 right, 2 bottom, 3 top.
-  bool coulomb_face(const PetscScalar* const* phi, int side, PetscInt i, PetscInt j) const;
+  boundary::CoulombWalls walls_;
 };
 
 }  // namespace gf::momentum

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/Error.hpp"
+#include "linsolve/Krylov.hpp"
 #include "operators/Operators.hpp"
 
 namespace gf::projection {
@@ -57,14 +58,12 @@ Projector::Projector(const Grid& g, double rtol) : g_(g) {
   // project(); the constant part of psi does not matter, the level is set afterwards.
   GF_PETSC(MatNullSpaceCreate(g.comm(), PETSC_TRUE, 0, nullptr, &null_));
   GF_PETSC(MatSetNullSpace(M_, null_));
-  GF_PETSC(KSPCreate(g.comm(), &ksp_));
-  GF_PETSC(KSPSetOptionsPrefix(ksp_, "pres_"));
-  GF_PETSC(KSPSetType(ksp_, KSPCG));
-  PC pc;
-  GF_PETSC(KSPGetPC(ksp_, &pc));
-  GF_PETSC(PCSetType(pc, pfmg_ ? PCPFMG : PCHYPRE));
-  GF_PETSC(KSPSetTolerances(ksp_, rtol, 1e-50, PETSC_DEFAULT, 1000));
-  GF_PETSC(KSPSetFromOptions(ksp_));
+  ksp_ = std::make_unique<linsolve::Krylov>(
+      g.comm(),
+      linsolve::KrylovSetup{"pres_", KSPCG, pfmg_ ? PCPFMG : PCHYPRE, rtol, false, true,
+                            "pressure solve (prefix -pres_)",
+                            "try another preconditioner (e.g. -pres_pc_type hypre for BoomerAMG, "
+                            "or gamg) or a smaller time step (time.cfl, time.dt_max)"});
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &rhs_));
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &psi_));
   GF_PETSC(DMCreateLocalVector(g.dm_cell(), &lpsi_));
@@ -75,7 +74,6 @@ Projector::Projector(const Grid& g, double rtol) : g_(g) {
 Projector::~Projector() {
   for (Vec* v : {&rhs_, &psi_, &lpsi_, &lrho_, &lvel_}) VecDestroy(v);
   MatNullSpaceDestroy(&null_);
-  KSPDestroy(&ksp_);
   MatDestroy(&M_);
   DMDestroy(&dm_struct_);
 }
@@ -115,7 +113,7 @@ void Projector::assemble(Vec rho) {
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
   GF_PETSC(MatAssemblyBegin(M_, MAT_FINAL_ASSEMBLY));
   GF_PETSC(MatAssemblyEnd(M_, MAT_FINAL_ASSEMBLY));
-  GF_PETSC(KSPSetOperators(ksp_, M_, M_));
+  ksp_->set_operator(M_);
 }
 
 int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
@@ -137,37 +135,9 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
   }
   GF_PETSC(MatNullSpaceRemove(null_, rhs_));
   GF_PETSC(VecSet(psi_, 0.0));
-  GF_PETSC(KSPSolve(ksp_, rhs_, psi_));
-  KSPConvergedReason reason;
-  PetscInt its;
-  GF_PETSC(KSPGetConvergedReason(ksp_, &reason));
-  GF_PETSC(KSPGetIterationNumber(ksp_, &its));
-  fell_back_ = false;
-  KSPType type;
-  GF_PETSC(KSPGetType(ksp_, &type));
-  const bool cg = std::string(type) == KSPCG;
-  if (cg && (reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_BREAKDOWN)) {
-    // CG needs a symmetric positive definite preconditioner (PFMG with its default weighted
-    // Jacobi smoother is symmetric; the fallback serves whatever -pres_pc_type chose).
-    // BoomerAMG on this singular (Neumann) operator is one in practice but not always: HP case B at n = 64 met
-    // DIVERGED_INDEFINITE_PC at t = 1.58 s. GMRES does not need it, so the step is solved again
-    // with GMRES and the same preconditioner (counted in summary.json); CG stays the default.
-    GF_PETSC(KSPSetType(ksp_, KSPGMRES));
-    GF_PETSC(VecSet(psi_, 0.0));
-    GF_PETSC(KSPSolve(ksp_, rhs_, psi_));
-    PetscInt its2;
-    GF_PETSC(KSPGetConvergedReason(ksp_, &reason));
-    GF_PETSC(KSPGetIterationNumber(ksp_, &its2));
-    GF_PETSC(KSPSetType(ksp_, KSPCG));
-    its += its2;
-    fell_back_ = true;
-  }
-  if (reason < 0)
-    throw RunError("pressure solve (prefix -pres_) did not converge: " +
-                   std::string(KSPConvergedReasons[reason]) + " after " + std::to_string(its) +
-                   " iterations" + (fell_back_ ? " (CG, then GMRES)" : "") +
-                   "; try another preconditioner (e.g. -pres_pc_type hypre for BoomerAMG, or gamg) "
-                   "or a smaller time step (time.cfl, time.dt_max)");
+  // CG that breaks down is solved again with GMRES (linsolve/Krylov.hpp; counted in summary.json).
+  const int its = ksp_->solve(rhs_, psi_);
+  fell_back_ = ksp_->fell_back();
 
   // Velocity correction u = u~ - (dt/a0) (1/rho_face) grad psi on the interior faces.
   GF_PETSC(DMGlobalToLocalBegin(g_.dm_cell(), psi_, INSERT_VALUES, lpsi_));
@@ -208,7 +178,7 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
     GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), p, &pa));
   }
   GF_PETSC(VecShift(p, -g_.sum(top_sum) / b.nx));
-  return static_cast<int>(its);
+  return its;
 }
 
 }  // namespace gf::projection

@@ -28,7 +28,10 @@
 // MATHYPRESTRUCT rejects periodic DMDAs.
 #include <petscksp.h>
 
+#include <memory>
+
 #include "grid/Grid.hpp"
+#include "linsolve/Krylov.hpp"
 
 namespace gf::projection {
 
@@ -53,7 +56,7 @@ class Projector {
   bool pfmg_ = false;
   DM dm_struct_ = nullptr;  // PFMG only: the nx x ny x 1 DMDA of the MATHYPRESTRUCT matrix
   Mat M_ = nullptr;
-  KSP ksp_ = nullptr;
+  std::unique_ptr<linsolve::Krylov> ksp_;
   MatNullSpace null_ = nullptr;
   bool fell_back_ = false;
   Vec rhs_ = nullptr, psi_ = nullptr, lpsi_ = nullptr, lvel_ = nullptr, lrho_ = nullptr;

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "core/Error.hpp"
-#include "levelset/Heaviside.hpp"
+#include "grid/Local.hpp"
 
 namespace gf::rheology {
 
@@ -121,27 +121,12 @@ double node_mean(const Box& b, const PetscScalar* const* a, PetscInt i, PetscInt
       }
   return cnt ? sum / cnt : 0.0;
 }
-struct LocalCell {
-  DM dm;
-  Vec v = nullptr;
-  const PetscScalar** a = nullptr;
-  LocalCell(DM d, Vec global) : dm(d) {
-    GF_PETSC(DMGetLocalVector(dm, &v));
-    GF_PETSC(DMGlobalToLocalBegin(dm, global, INSERT_VALUES, v));
-    GF_PETSC(DMGlobalToLocalEnd(dm, global, INSERT_VALUES, v));
-    GF_PETSC(DMDAVecGetArrayRead(dm, v, &a));
-  }
-  ~LocalCell() {
-    DMDAVecRestoreArrayRead(dm, v, &a);
-    DMRestoreLocalVector(dm, &v);
-  }
-};
 }  // namespace
 
 double update_plastic_node(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec kappa, Vec D,
                            Vec rho, Vec eta, double a0dt, double theta) {
   const Box& b = g.box();
-  LocalCell lk(g.dm_cell(), kappa), lr(g.dm_cell(), rho), le(g.dm_cell(), eta);
+  const LocalCells lk(g.dm_cell(), kappa), lr(g.dm_cell(), rho), le(g.dm_cell(), eta);
   PetscScalar*** s;
   const PetscScalar ***sn, ***d;
   GF_PETSC(DMDAVecGetArrayDOF(g.dm_node(), S, &s));
@@ -154,13 +139,13 @@ double update_plastic_node(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec 
   for (PetscInt j = ys; j < ys + ym; ++j)
     for (PetscInt i = xs; i < xs + xm; ++i) {
       double* sc = s[j][i];
-      const double k = node_mean(b, lk.a, i, j);
+      const double k = node_mean(b, lk.array(), i, j);
       if (k <= 0) {
         sc[0] = sc[1] = sc[2] = 0.0;
         continue;
       }
       const double rk =
-          r_local(pr, k, node_mean(b, le.a, i, j), node_mean(b, lr.a, i, j) * a0dt * h2) * k;
+          r_local(pr, k, node_mean(b, le.array(), i, j), node_mean(b, lr.array(), i, j) * a0dt * h2) * k;
       const double dxx = 0.5 * (d[j][i][0] - d[j][i][2]);
       double sxx = sc[0] + rk * dxx + theta * (sn[j][i][0] - sc[0]);
       double sxy = sc[1] + rk * d[j][i][1] + theta * (sn[j][i][1] - sc[1]);
@@ -178,7 +163,7 @@ double update_plastic_node(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec 
 
 void project_field_node(const Grid& g, Vec S, Vec kappa) {
   const Box& b = g.box();
-  LocalCell lk(g.dm_cell(), kappa);
+  const LocalCells lk(g.dm_cell(), kappa);
   PetscScalar*** s;
   GF_PETSC(DMDAVecGetArrayDOF(g.dm_node(), S, &s));
   PetscInt xs, ys, xm, ym;
@@ -186,7 +171,7 @@ void project_field_node(const Grid& g, Vec S, Vec kappa) {
   for (PetscInt j = ys; j < ys + ym; ++j)
     for (PetscInt i = xs; i < xs + xm; ++i) {
       double* c = s[j][i];
-      if (node_mean(b, lk.a, i, j) <= 0) {
+      if (node_mean(b, lk.array(), i, j) <= 0) {
         c[0] = c[1] = c[2] = 0.0;
         continue;
       }
@@ -196,18 +181,18 @@ void project_field_node(const Grid& g, Vec S, Vec kappa) {
   GF_PETSC(DMDAVecRestoreArrayDOF(g.dm_node(), S, &s));
 }
 
-void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Vec kappa) {
+void yield_stress(const Grid& g, const Params& pr, Vec support, Vec p, Vec p_hyd, Vec kappa) {
   const Box& b = g.box();
-  const PetscScalar **ph, **pa, **ph_hyd = nullptr;
+  const PetscScalar **w, **pa, **ph_hyd = nullptr;
   PetscScalar** k;
-  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), phi, &ph));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), support, &w));
   GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), p, &pa));
   if (pr.yield == Yield::Hydrostatic) GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), p_hyd, &ph_hyd));
   GF_PETSC(DMDAVecGetArray(g.dm_cell(), kappa, &k));
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       double kv = 0;
-      if (ph[j][i] < pr.support) {
+      if (w[j][i] >= 0) {
         switch (pr.yield) {
           case Yield::None: kv = 0; break;
           case Yield::Bingham: {
@@ -223,8 +208,7 @@ void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Ve
             // overburden at a free surface (for DP, down to tan(alpha) times the air's
             // pressure), and the band's pressure carries its dilution; weighting them as well
             // let a Drucker-Prager pile's toes slide (cases/verify/dp_pile.toml: 4.6e-4 m/s).
-            const double frac =
-                pr.support > 0 ? 1.0 - levelset::heaviside(ph[j][i], pr.support) : 1.0;
+            const double frac = w[j][i];
             kv = frac > 1e-9 ? pr.tau_y * frac : 0.0;
             break;
           }
@@ -237,7 +221,25 @@ void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Ve
   GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), kappa, &k));
   if (ph_hyd) GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), p_hyd, &ph_hyd));
   GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), p, &pa));
-  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), phi, &ph));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), support, &w));
+}
+
+void mu_i_viscosity(const Grid& g, const Params& pr, Vec D, Vec p, double rho_s, Vec eta_s) {
+  const Box& b = g.box();
+  const PetscScalar*** d;
+  const PetscScalar** pa;
+  PetscScalar** es;
+  GF_PETSC(DMDAVecGetArrayDOFRead(g.dm_ten(), D, &d));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), p, &pa));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), eta_s, &es));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double dxx = 0.5 * (d[j][i][0] - d[j][i][2]), dxy = d[j][i][1];
+      es[j][i] = mu_i_viscosity(pr, std::hypot(dxx, dxy), pa[j][i], rho_s);
+    }
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), eta_s, &es));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), p, &pa));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g.dm_ten(), D, &d));
 }
 
 void project_field(const Grid& g, Vec S, Vec kappa) {
@@ -273,6 +275,21 @@ void tensor_norm(const Grid& g, Vec L, Vec out) {
     }
   GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), out, &o));
   GF_PETSC(DMDAVecRestoreArrayDOFRead(g.dm_ten(), L, &l));
+}
+
+void yielded_mask(const Grid& g, Vec Snorm, Vec kappa, Vec yielded) {
+  const Box& b = g.box();
+  const PetscScalar **sn, **k;
+  PetscScalar** y;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), Snorm, &sn));
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), kappa, &k));
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), yielded, &y));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i)
+      y[j][i] = (k[j][i] <= 0 || sn[j][i] >= 1.0 - 1e-9) ? 1.0 : 0.0;
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), yielded, &y));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), kappa, &k));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), Snorm, &sn));
 }
 
 }  // namespace gf::rheology

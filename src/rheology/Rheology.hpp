@@ -6,7 +6,8 @@
 // mu(I) viscosity of eq. 11. The plastic tensor S is traceless and symmetric; in the plane it is
 // (Sxx, Sxy, Syy = -Sxx). Norms are the paper's modified Frobenius norm
 //   |L|^2 = 1/2 sum_ij L_ij^2 = Lxx^2 + Lxy^2   (traceless 2D tensor).
-// This module knows nothing of the level set: the granular region comes in as a mask.
+// This module knows nothing of the level set: the granular region comes in as a field (the
+// yield-stress support of yield_stress below), computed from phi by levelset/.
 #include <petscdmda.h>
 
 #include <algorithm>
@@ -32,12 +33,6 @@ struct Params {
   // the cell copy (shear rate = mean of the four node rates), half from the node copy (normal
   // rate = mean of the adjacent cells').
   bool node_copy = false;
-  // m: kappa (and the Coulomb wall friction) act where phi < support. 0: in the granular phase
-  // phi < 0 (the paper); eps: also in the smeared band, wherever eq. 25 gives granular mass
-  // (rheology.yield_support = "mass"); there a Bingham tau_y is weighted by the granular volume
-  // fraction 1 - H_eps(phi) of eq. 25, so that it goes to zero with the granular mass instead
-  // of jumping at phi = eps (see yield_stress).
-  double support = 0;
   double theta_per_dt = 10;  // 1/s: theta = theta_per_dt dt (section 4.1.3), capped at 0.5
   double fp_tol = 1e-6;    // stop when max |S_{k+1} - S_k| and |s_{k+1} - s_k| fall below
   // m/s; > 0: also stop when the velocity u~ of eq. 31 changes by less than this in one
@@ -56,9 +51,6 @@ inline void project(double& sxx, double& sxy) {
     sxy /= n;
   }
 }
-// P_b of eq. 30 on the tangential (scalar, in 2D) wall stress direction.
-inline double project_b(double s) { return std::clamp(s, -1.0, 1.0); }
-
 // The mu(I) viscosity of eq. 11 from |D| (the paper's norm, 1/s) and p (Pa), clipped to
 // [eta_min, eta_max] (a floor keeps the viscous operator well posed where p -> 0 and |D| is
 // large; a cap where |D| -> 0 and the model viscosity grows without bound).
@@ -117,10 +109,19 @@ double update_plastic_node(const Grid& g, const Params& pr, Vec S, Vec S_n, Vec 
 // P on every node of the node copy, and 0 where the node's kappa is 0.
 void project_field_node(const Grid& g, Vec S, Vec kappa);
 
-// The yield stress kappa at the cell centres (eqs. 18-19): 0 where phi >= 0 (air, sharp in the
-// sign of phi, section 3.1); tau_y, tan(alpha) p^+ or tan(alpha) p_hyd where phi < 0.
+// The yield stress kappa at the cell centres (eqs. 18-19). `support` says where it acts and with
+// what weight (levelset::yield_support): a cell with support < 0 has none (air, eq. 18); a cell
+// with support >= 0 has tan(alpha) p^+ (dp, eq. 19) or tan(alpha) p_hyd (hp, eq. 15), or the
+// Bingham tau_y times its support, the cell's granular volume fraction where the yield stress
+// follows the mass (rheology.yield_support = "mass"; 1 in the paper's sharp support). Bingham
+// fractions below 1e-9 count as none (r ~ 1/kappa^2).
 // p: the latest pressure p^n; p_hyd: only read for Yield::Hydrostatic.
-void yield_stress(const Grid& g, const Params& pr, Vec phi, Vec p, Vec p_hyd, Vec kappa);
+void yield_stress(const Grid& g, const Params& pr, Vec support, Vec p, Vec p_hyd, Vec kappa);
+
+// The mu(I) viscosity of eq. 11 at the cell centres from D (dm_ten, the deviatoric part taken
+// here) and p (dm_cell), into eta_s (dm_cell): the granular phase's own viscosity, before its
+// harmonic mean with the air (levelset::mix_viscosity).
+void mu_i_viscosity(const Grid& g, const Params& pr, Vec D, Vec p, double rho_s, Vec eta_s);
 
 // P applied to every cell of S (dm_ten), and S = 0 where kappa = 0: keeps an extrapolated
 // iterate (Anderson) inside the set |S| <= 1 of eq. 29.
@@ -128,5 +129,9 @@ void project_field(const Grid& g, Vec S, Vec kappa);
 
 // |L| of a dm_ten field at the cell centres (modified Frobenius norm), into a dm_cell Vec.
 void tensor_norm(const Grid& g, Vec L, Vec out);
+
+// The yielded mask of the output (dm_cell): 1 where the material flows (no yield stress,
+// kappa <= 0, or |S| >= 1 - 1e-9: on the yield surface), 0 where it is rigid. Snorm: |S|.
+void yielded_mask(const Grid& g, Vec Snorm, Vec kappa, Vec yielded);
 
 }  // namespace gf::rheology

@@ -5,46 +5,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <sstream>
 
 #include "core/Error.hpp"
-#include "core/Version.hpp"
-#include "core/Profile.hpp"
 #include "core/Log.hpp"
+#include "core/Profile.hpp"
 #include "core/Signal.hpp"
+#include "core/Version.hpp"
 #include "diagnostics/Diagnostics.hpp"
-#include "io/Csv.hpp"
 #include "io/IoError.hpp"
 #include "io/Json.hpp"
-#include "io/Vtk.hpp"
 #include "levelset/LevelSet.hpp"
+#include "sim/Counters.hpp"
 
 namespace gf {
-
-Simulation::Simulation(const Grid& g, State& s, Stepper& stepper, const RunConfig& rc)
-    : g_(g), s_(s), stepper_(stepper), rc_(rc), phi0_(g.dm_cell(), "phi0") {}
-
-double Simulation::choose_dt(double umax, double dt_prev) const {
-  double dt;
-  if (rc_.dt_fixed) {
-    dt = rc_.dt;
-  } else {
-    const double h = std::min(g_.hx(), g_.hy());
-    dt = rc_.dt_max;
-    if (umax > 0) dt = std::min(dt, rc_.cfl * h / umax);
-    const auto& gr = stepper_.config().gravity;
-    const double gmag = std::hypot(gr[0], gr[1]);
-    // A fluid starting from rest accelerates by |g|: it must not cross more than a cell
-    // fraction in one step (sqrt(h/|g|) is the time to fall one cell from rest, times sqrt 2).
-    if (gmag > 0 && stepper_.config().prescribed == PrescribedFlow::None)
-      dt = std::min(dt, rc_.cfl * std::sqrt(h / gmag));
-    if (dt_prev > 0) dt = std::min(dt, 1.2 * dt_prev);
-    else if (rc_.dt > 0) dt = std::min(dt, rc_.dt);
-  }
-  const double remaining = rc_.t_end - s_.t;
-  if (dt > remaining) dt = remaining;
-  return dt;
-}
 
 namespace {
 
@@ -66,19 +39,94 @@ std::string hex(double v) {
 }
 
 // The prognostic fields, in checkpoint order (their names are checked on loading).
-std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, bool prescribed,
-                                                   bool node_copy) {
+std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, const ModelTraits& tr) {
   // rho and eta are derived from phi (and, with mu(I), from u and p) but are kept as the last
   // step left them, so that a restart needs no recomputation that could differ.
   std::vector<io::CheckpointField> f = {
       {"phi", s.phi}, {"velocity", s.vel}, {"velocity_old", s.vel_old}, {"p", s.p},
       {"S", s.S},     {"s_wall", s.s_wall}, {"rho", s.rho},             {"eta", s.eta}};
-  if (prescribed) f.push_back({"phi0", phi0});
-  if (node_copy) f.push_back({"S_node", s.S_node});  // rheology.plastic_grid = "cell_node"
+  if (tr.returns_to_start) f.push_back({"phi0", phi0});
+  if (tr.node_copy) f.push_back({"S_node", s.S_node});  // rheology.plastic_grid = "cell_node"
   return f;
 }
 
+const std::vector<std::string> kDiagnosticsColumns = {
+    "t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed", "granular_u",
+    "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
+    "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m", "bottom_slide_m",
+    "left_normal_N", "left_friction_N", "bottom_normal_N", "bottom_friction_N", "front_x",
+    "backwall_h", "max_p_granular", "max_speed_granular"};
+
 }  // namespace
+
+// The files of a run and the scratch fields of its outputs, open for the duration of run().
+struct Simulation::Output {
+  io::CsvWriter csv;
+  io::ProbeWriter probes;
+  io::CollapseMonitor collapse;  // profiles.csv, structure.csv, deposit.csv
+  std::unique_ptr<io::VtkSeries> vtk;
+  Field dnorm, snorm, yielded;  // plastic fields (cells)
+  Field ucell, speed;  // cell-centred velocity (2 interleaved components, dm_vel layout) and |u|
+  Output(const Grid& g, const RunConfig& rc, bool two_phase, bool restarted, long long diag_bytes,
+         const std::vector<long long>& probe_bytes, const io::CheckpointHeader* restart)
+      : csv(restarted ? io::CsvWriter(rc.out_dir + "/diagnostics.csv", kDiagnosticsColumns,
+                                      diag_bytes, g.comm())
+                      : io::CsvWriter(rc.out_dir + "/diagnostics.csv", kDiagnosticsColumns,
+                                      g.comm())),
+        probes(g, rc.out_dir, rc.probes, io::default_extra_cell_fields(),
+               restarted ? probe_bytes : std::vector<long long>{}),
+        collapse(g, rc.collapse, rc.out_dir, two_phase, restart),
+        dnorm(g.dm_cell(), "D_norm"),
+        snorm(g.dm_cell(), "S_norm"),
+        yielded(g.dm_cell(), "yielded"),
+        ucell(g.dm_vel(), "u_cell"),
+        speed(g.dm_cell(), "speed") {}
+};
+
+Simulation::Simulation(const Grid& g, State& s, TimeStepper& stepper, const RunConfig& rc)
+    : g_(g), s_(s), stepper_(stepper), rc_(rc), phi0_(g.dm_cell(), "phi0") {}
+
+Simulation::~Simulation() = default;
+
+void Loop::add(const StepStats& st, double dt) {
+  last = st;
+  if (st.fp_capped) {
+    ++fp_capped_steps;
+    fp_capped_change = std::max(fp_capped_change, st.fp_change);
+  }
+  if (st.pres_fallback) ++pres_fallbacks;
+  mu_floor_max = std::max(mu_floor_max, st.mu_i_floor_cells);
+  mu_cap_max = std::max(mu_cap_max, st.mu_i_cap_cells);
+  max_fp_iters = std::max(max_fp_iters, st.fp_iters);
+  fp_iters_total += st.fp_iters;
+  visc_its_total += st.visc_its;
+  visc_polish_its_total += st.visc_polish_its;
+  if (st.visc_polish_its > 0) ++visc_polish_steps;
+  if (st.redistanced) ++redistancings;
+  dt_prev = dt;
+}
+
+double Simulation::choose_dt(double umax, double dt_prev) const {
+  double dt;
+  if (rc_.dt_fixed) {
+    dt = rc_.dt;
+  } else {
+    const double h = std::min(g_.hx(), g_.hy());
+    dt = rc_.dt_max;
+    if (umax > 0) dt = std::min(dt, rc_.cfl * h / umax);
+    const auto& gr = stepper_.traits().gravity;
+    const double gmag = std::hypot(gr[0], gr[1]);
+    // A fluid starting from rest accelerates by |g|: it must not cross more than a cell
+    // fraction in one step (sqrt(h/|g|) is the time to fall one cell from rest, times sqrt 2).
+    if (gmag > 0 && stepper_.traits().solves_momentum)
+      dt = std::min(dt, rc_.cfl * std::sqrt(h / gmag));
+    if (dt_prev > 0) dt = std::min(dt, 1.2 * dt_prev);
+    else if (rc_.dt > 0) dt = std::min(dt, rc_.dt);
+  }
+  const double remaining = rc_.t_end - s_.t;
+  if (dt > remaining) dt = remaining;
+  return dt;
+}
 
 // ------------------------------------------------------------------------------ checkpoints
 
@@ -97,52 +145,24 @@ void Simulation::save_checkpoint(const std::string& reason) {
   h.set("dt", s_.dt);
   h.set("dt_old", s_.dt_old);
   h.set("step", s_.step);
-  h.set("loop.dt_prev", lp_.dt_prev);
-  h.set("loop.next_out", lp_.next_out);
-  h.set("loop.next_vtk", lp_.next_vtk);
-  h.set("loop.vol0", lp_.vol0);
-  h.set("loop.max_div", lp_.max_div);
-  h.set("loop.volume_change_pct", lp_.volume_change_pct);
-  h.set("loop.wall_s", lp_.wall_s + (wall_now() - seg_t0_));
-  h.set("loop.fp_capped_steps", lp_.fp_capped_steps);
-  h.set("loop.fp_capped_change", lp_.fp_capped_change);
-  h.set("loop.volume_warn_rows", lp_.volume_warn_rows);
-  h.set("loop.pres_fallbacks", lp_.pres_fallbacks);
-  h.set("loop.mu_floor_max", lp_.mu_floor_max);
-  h.set("loop.mu_cap_max", lp_.mu_cap_max);
-  h.set("loop.restarts", lp_.restarts);
-  h.set("loop.max_fp_iters", lp_.max_fp_iters);
-  h.set("loop.fp_iters_total", lp_.fp_iters_total);
-  h.set("loop.visc_its_total", lp_.visc_its_total);
-  h.set("loop.visc_polish_its_total", lp_.visc_polish_its_total);
-  h.set("loop.visc_polish_steps", lp_.visc_polish_steps);
-  h.set("loop.redistancings", lp_.redistancings);
-  h.set("loop.stress_steps", lp_.stress_steps);
-  h.set("loop.stress_speed", lp_.stress_speed);
-  if (collapse_) collapse_->save(h);
-  const StepStats& l = lp_.last;
-  h.set("last.visc_its", l.visc_its);
-  h.set("last.pres_its", l.pres_its);
-  h.set("last.fp_iters", l.fp_iters);
-  h.set("last.fp_change", l.fp_change);
-  h.set("last.fp_capped", static_cast<long long>(l.fp_capped));
-  h.set("last.mu_i_floor_cells", l.mu_i_floor_cells);
-  h.set("last.mu_i_cap_cells", l.mu_i_cap_cells);
-  h.set("last.redistanced", static_cast<long long>(l.redistanced));
+  Loop l = lp_;
+  l.wall_s += wall_now() - seg_t0_;  // the wall clock of every run so far
+  counters::save(counters::loop_counters(), l, h);
+  counters::save(counters::step_counters(), lp_.last, h);
+  if (out_) out_->collapse.save(h);
   // Where the output files stood (rank 0 knows; rank 0 writes the header).
-  h.set("files.diagnostics", csv_ ? csv_->bytes() : 0);
-  const auto pb = probes_ ? probes_->file_bytes() : decltype(probes_->file_bytes()){};
+  h.set("files.diagnostics", out_ ? out_->csv.bytes() : 0);
+  const auto pb = out_ ? out_->probes.file_bytes() : decltype(out_->probes.file_bytes()){};
   h.set("files.probes", static_cast<long long>(pb.size()));
   for (std::size_t k = 0; k < pb.size(); ++k)
     h.set_text("files.probe." + std::to_string(k), std::to_string(pb[k].second) + " " + pb[k].first);
-  const auto& ve = vtk_ ? vtk_->entries() : vtk_entries_;
+  const auto& ve = out_ && out_->vtk ? out_->vtk->entries() : vtk_entries_;
   h.set("vtk.count", static_cast<long long>(ve.size()));
   for (std::size_t k = 0; k < ve.size(); ++k)
     h.set_text("vtk." + std::to_string(k), hex(ve[k].first) + " " + ve[k].second);
-  const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
   prof::Scope pscope(prof::Checkpoint);
   io::write_checkpoint(g_.comm(), rc_.out_dir, std::move(h),
-                       checkpoint_fields(s_, phi0_, prescribed, stepper_.config().rheo.node_copy), ckpt_files_);
+                       checkpoint_fields(s_, phi0_, stepper_.traits()), ckpt_files_);
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;
   if (g_.rank() == 0)
@@ -175,42 +195,12 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   s_.dt = h.get_double("dt");
   s_.dt_old = h.get_double("dt_old");
   s_.step = h.get_int("step");
-  lp_.dt_prev = h.get_double("loop.dt_prev");
-  lp_.next_out = h.get_double("loop.next_out");
-  lp_.next_vtk = h.get_double("loop.next_vtk");
-  lp_.vol0 = h.get_double("loop.vol0");
-  lp_.max_div = h.get_double("loop.max_div");
-  lp_.volume_change_pct = h.get_double("loop.volume_change_pct");
-  lp_.wall_s = h.get_double("loop.wall_s");
-  lp_.fp_capped_steps = h.get_int("loop.fp_capped_steps");
-  lp_.fp_capped_change = h.get_double("loop.fp_capped_change");
-  lp_.volume_warn_rows = h.get_int("loop.volume_warn_rows");
-  lp_.pres_fallbacks = h.has("loop.pres_fallbacks") ? h.get_int("loop.pres_fallbacks") : 0;
-  lp_.mu_floor_max = h.get_int("loop.mu_floor_max");
-  lp_.mu_cap_max = h.get_int("loop.mu_cap_max");
-  lp_.restarts = h.get_int("loop.restarts") + 1;
-  lp_.max_fp_iters = static_cast<int>(h.get_int("loop.max_fp_iters"));
-  lp_.fp_iters_total = h.has("loop.fp_iters_total") ? h.get_int("loop.fp_iters_total") : 0;
-  lp_.visc_its_total = h.has("loop.visc_its_total") ? h.get_int("loop.visc_its_total") : 0;
-  lp_.visc_polish_its_total =
-      h.has("loop.visc_polish_its_total") ? h.get_int("loop.visc_polish_its_total") : 0;
-  lp_.visc_polish_steps =
-      h.has("loop.visc_polish_steps") ? h.get_int("loop.visc_polish_steps") : 0;
-  lp_.redistancings = h.has("loop.redistancings") ? h.get_int("loop.redistancings") : 0;
-  lp_.stress_steps = h.has("loop.stress_steps") ? h.get_int("loop.stress_steps") : -1;
-  lp_.stress_speed = h.has("loop.stress_speed") ? h.get_double("loop.stress_speed") : -1;
-  StepStats& l = lp_.last;
-  l.visc_its = static_cast<int>(h.get_int("last.visc_its"));
-  l.pres_its = static_cast<int>(h.get_int("last.pres_its"));
-  l.fp_iters = static_cast<int>(h.get_int("last.fp_iters"));
-  l.fp_change = h.get_double("last.fp_change");
-  l.fp_capped = h.get_int("last.fp_capped") != 0;
-  l.mu_i_floor_cells = h.get_int("last.mu_i_floor_cells");
-  l.mu_i_cap_cells = h.get_int("last.mu_i_cap_cells");
-  l.redistanced = h.get_int("last.redistanced") != 0;
+  counters::restore(counters::loop_counters(), h, lp_);
+  counters::restore(counters::step_counters(), h, lp_.last);
+  ++lp_.restarts;
   diag_bytes_ = h.get_int("files.diagnostics");
   restart_header_ = h;  // the collapse monitor reads its history from it in run()
-  // Probe files by name: the case comparison (apps/) has made sure the probes are the same.
+  // Probe files by name: the case comparison (setup/) has made sure the probes are the same.
   const long long np = h.get_int("files.probes");
   probe_bytes_.clear();
   for (const auto& spec : rc_.probes) {
@@ -237,266 +227,314 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
       throw io::IoError(src + ": malformed entry vtk." + std::to_string(k) + " '" + v + "'");
     vtk_entries_.emplace_back(te, v.substr(sp + 1));
   }
-  const bool prescribed = stepper_.config().prescribed != PrescribedFlow::None;
-  io::read_checkpoint_fields(g_.comm(), ckpt_dir, h, checkpoint_fields(s_, phi0_, prescribed, stepper_.config().rheo.node_copy));
+  io::read_checkpoint_fields(g_.comm(), ckpt_dir, h,
+                             checkpoint_fields(s_, phi0_, stepper_.traits()));
   restarted_ = true;
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;
 }
 
+// ------------------------------------------------------------------------------ outputs
+
+double Simulation::granular_volume() const {
+  const ModelTraits& tr = stepper_.traits();
+  return tr.two_phase ? diag::granular_volume(g_, s_.phi, tr.eps) : g_.box().Lx * g_.box().Ly;
+}
+
+void Simulation::write_diagnostics() {
+  prof::Scope pscope(prof::Output);
+  const ModelTraits& tr = stepper_.traits();
+  const double eps = tr.two_phase ? tr.eps : 0.0;
+  const double vol = granular_volume();
+  const double vchange = lp_.vol0 > 0 ? 100.0 * (vol - lp_.vol0) / lp_.vol0 : 0.0;
+  const double div = diag::max_divergence(g_, s_.vel);
+  lp_.max_div = std::max(lp_.max_div, div);
+  const auto gu = diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
+  // Where the granular material sticks to / slides on the back wall and the bottom (eqs. 22-23).
+  const auto wc = stepper_.wall_contact(s_);
+  const auto &stick = wc.stick_m, &slide = wc.slide_m;
+  const StepStats& last = lp_.last;
+  const auto col = out_->collapse.sample(s_.t, s_.phi, s_.vel, s_.p);
+  out_->csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
+                 diag::max_speed(g_, s_.vel), gu[0], gu[1],
+                 diag::kinetic_energy(g_, s_.vel, s_.rho), div,
+                 static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
+                 static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
+                 slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2],
+                 col.front_x, col.backwall_h, col.max_p_granular, col.max_speed_granular});
+  // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
+  io::NamedCellFields extra;
+  if (out_->probes.samples("D_norm") || out_->probes.samples("S_norm")) {
+    stepper_.derived_fields(s_, out_->dnorm, out_->snorm, out_->yielded);
+    extra = {{"D_norm", out_->dnorm}, {"S_norm", out_->snorm}};
+  }
+  if (out_->probes.samples("kappa")) extra.emplace_back("kappa", stepper_.kappa());
+  out_->probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta, extra);
+  lp_.volume_change_pct = vchange;
+  // Mass conservation is not exact with a level set: a drift beyond the threshold is a
+  // warning (counted in summary.json), said once.
+  if (tr.two_phase && std::abs(vchange) > rc_.volume_warn_pct) {
+    if (lp_.volume_warn_rows == 0 && g_.rank() == 0)
+      log::message("granflow: warning: the granular volume has changed by " + num(vchange) +
+                   " % at t = " + num(s_.t) + " s (beyond output.volume_warn_pct = " +
+                   num(rc_.volume_warn_pct) +
+                   " %): the interface is under-resolved; try a larger grid.n or a smaller "
+                   "time.cfl (counted in summary.json)");
+    ++lp_.volume_warn_rows;
+  }
+}
+
+void Simulation::write_vtk() {
+  if (!out_->vtk) return;
+  prof::Scope pscope(prof::Output);
+  Output& o = *out_;
+  io::cell_velocity(g_, s_.vel, o.ucell, nullptr, o.speed);
+  stepper_.derived_fields(s_, o.dnorm, o.snorm, o.yielded);
+  o.vtk->write(s_.t, {{"phi", s_.phi, 1}, {"rho", s_.rho, 1}, {"u", o.ucell, 2},
+                      {"speed", o.speed, 1}, {"p", s_.p, 1}, {"eta", s_.eta, 1},
+                      {"D_norm", o.dnorm, 1}, {"S_norm", o.snorm, 1}, {"yielded", o.yielded, 1},
+                      {"kappa", stepper_.kappa(), 1}});
+}
+
+void Simulation::write_summary(const std::string& status, const std::string& message) {
+  RunSummary& sum = summary_;
+  sum.steps = s_.step;
+  sum.t_end = s_.t;
+  sum.wall_s = lp_.wall_s + (wall_now() - seg_t0_);
+  sum.max_divergence = lp_.max_div;
+  sum.volume_change_pct = lp_.volume_change_pct;
+  io::JsonObject js;
+  js.set("title", rc_.title)
+      .set("status", status)
+      .set("version", std::string(gf::git_version()))
+      .set("ranks", static_cast<long long>(g_.size()))
+      .set("nx", static_cast<long long>(g_.nx()))
+      .set("ny", static_cast<long long>(g_.ny()))
+      .set("cells", static_cast<long long>(g_.nx() * g_.ny()))
+      .set("steps", sum.steps)
+      .set("t_end", sum.t_end)
+      .set("wall_s", sum.wall_s)
+      .set("s_per_step", sum.steps > 0 ? sum.wall_s / sum.steps : 0.0);
+  counters::summarize(lp_, counters::Summary::First, js);
+  js.set("max_speed", diag::max_speed(g_, s_.vel))
+      .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho));
+  counters::summarize(lp_, counters::Summary::Second, js);
+  if (lp_.stress_steps >= 0) counters::summarize(lp_, counters::Summary::InitialStress, js);
+  out_->collapse.summarize(js);
+  {
+    // Time by phase (core/Profile.hpp), the largest over the ranks, s: for this process, i.e.
+    // since the start or the last restart. Peak resident memory, MiB: largest rank, all ranks.
+    std::array<double, prof::kCount + 1> loc{}, mx{};
+    for (int k = 0; k < prof::kCount; ++k) loc[k] = prof::seconds()[k];
+    loc[prof::kCount] = prof::peak_rss_mib();
+    MPI_Allreduce(loc.data(), mx.data(), prof::kCount + 1, MPI_DOUBLE, MPI_MAX, g_.comm());
+    double rss_sum = 0;
+    MPI_Allreduce(&loc[prof::kCount], &rss_sum, 1, MPI_DOUBLE, MPI_SUM, g_.comm());
+    for (int k = 0; k < prof::kCount; ++k)
+      js.set(std::string("time_") + prof::name(static_cast<prof::Phase>(k)) + "_s", mx[k]);
+    js.set("peak_rss_mib_max_rank", mx[prof::kCount]).set("peak_rss_mib_all_ranks", rss_sum);
+  }
+  if (last_ckpt_step_ >= 0)
+    js.set("checkpoint_t", last_ckpt_t_).set("checkpoint_step", last_ckpt_step_);
+  if (!message.empty()) js.set("message", message);
+  const ModelTraits& tr = stepper_.traits();
+  if (tr.returns_to_start && tr.two_phase) {
+    // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
+    const double a0 = levelset::granular_area(g_, phi0_, 0.0);
+    const double a1 = levelset::granular_area(g_, s_.phi, 0.0);
+    js.set("area_change_pct", a0 > 0 ? 100.0 * (a1 - a0) / a0 : 0.0)
+        .set("interface_l1_error_m2", levelset::interface_l1_error(g_, s_.phi, phi0_));
+  }
+  js.write_root(rc_.out_dir + "/summary.json", g_.comm());
+}
+
+std::string Simulation::when() const {
+  return "t = " + num(s_.t) + " s, step " + std::to_string(s_.step);
+}
+
+void Simulation::fail(const std::string& what) {
+  std::string msg = what;
+  if (last_ckpt_step_ >= 0)
+    msg += ". The last good checkpoint (t = " + num(last_ckpt_t_) + " s, step " +
+           std::to_string(last_ckpt_step_) + ") is kept in " + rc_.out_dir +
+           "/checkpoint: continue from it with `granflow run --restart " + rc_.out_dir +
+           "` and a smaller step (--set time.cfl=... or time.dt=...)";
+  else
+    msg += ". No checkpoint was written before the failure (output.checkpoint_interval_steps, "
+           "output.checkpoint_wall_s)";
+  write_diagnostics();
+  write_summary("failed", msg);
+  throw RunError(msg);
+}
+
 // ------------------------------------------------------------------------------ the loop
+
+void Simulation::open_outputs() {
+  out_ = std::make_unique<Output>(g_, rc_, stepper_.traits().two_phase, restarted_, diag_bytes_,
+                                  probe_bytes_, restarted_ ? &restart_header_ : nullptr);
+  if (rc_.vtk_interval <= 0) return;
+  out_->vtk = std::make_unique<io::VtkSeries>(g_, rc_.out_dir, "fields");
+  if (!restarted_) return;
+  const int missing = out_->vtk->resume(vtk_entries_);
+  if (missing && g_.rank() == 0)
+    log::message("granflow: warning: " + std::to_string(missing) +
+                 " VTK file(s) listed at the checkpoint are missing; fields.pvd no "
+                 "longer lists them");
+}
+
+void Simulation::equilibrate() {
+  const double dt0 = choose_dt(0.0, 0.0);
+  try {
+    const double eps = stepper_.traits().eps;
+    const auto [n, speed] = stepper_.equilibrate(
+        s_, dt0, rc_.stress_max_steps, rc_.stress_tol, [&, k = 0](const State& st) mutable {
+          const double v = diag::max_granular_speed(g_, st.vel, st.phi, eps);
+          if (++k % 50 == 0 && g_.rank() == 0)
+            log::message("granflow: initial stress: pseudo-step " + std::to_string(k) +
+                         ", granular speed " + num(v) + " m/s");
+          return v;
+        });
+    lp_.stress_steps = n;
+    lp_.stress_speed = speed;
+  } catch (const RunError& e) {
+    fail(std::string(e.what()) + " (in the initial stress, initial.stress = \"equilibrium\")");
+  }
+  if (g_.rank() == 0)
+    log::message("granflow: initial stress: " + std::to_string(lp_.stress_steps) +
+                 " pseudo-steps of " + num(dt0) + " s, the last one made " +
+                 num(lp_.stress_speed) + " m/s" +
+                 (lp_.stress_speed < rc_.stress_tol
+                      ? ""
+                      : " (WARNING: above initial.stress_tol: no equilibrium reached)"));
+}
+
+void Simulation::start() {
+  try {
+    stepper_.initialize(s_);
+  } catch (const RunError& e) {
+    fail(std::string(e.what()) + " (in the initial pressure of the fluid at rest, t = 0)");
+  }
+  if (rc_.stress_equilibrium && stepper_.traits().solves_momentum) equilibrate();
+  // A flow that returns the interface to its start (one turn, a reversed vortex) has the
+  // initial level set as exact answer: keep it for the interface error at the end.
+  if (stepper_.traits().returns_to_start) GF_PETSC(VecCopy(s_.phi, phi0_));
+  lp_.vol0 = granular_volume();
+  write_diagnostics();
+  write_vtk();
+  lp_.next_out = s_.t + rc_.output_interval;
+  lp_.next_vtk = s_.t + rc_.vtk_interval;
+}
+
+double Simulation::advance(double dt) {
+  const double t_before = s_.t;
+  StepStats st;
+  try {
+    st = stepper_.step(s_, dt);
+  } catch (const RunError& e) {
+    fail(std::string(e.what()) + " (in the step from t = " + num(t_before) + " s, step " +
+         std::to_string(s_.step + 1) + ", dt = " + num(dt) + " s)");
+  }
+  if (st.pres_fallback && lp_.pres_fallbacks == 0 && g_.rank() == 0)
+    log::message("granflow: warning: the pressure solve's CG broke down (indefinite "
+                 "preconditioner) in the step to t = " + num(s_.t) +
+                 " s; solved again with GMRES (further cases counted in summary.json)");
+  lp_.add(st, dt);
+
+  // Failure detection: a non-finite value in any prognostic field, or a speed no flow of this
+  // solver reaches (an explicit-convection blow-up grows without NaN for a while).
+  const Box& box = g_.box();
+  auto where = [&](const diag::CellIndex& c) {
+    return "cell (i, j) = (" + std::to_string(c.i) + ", " + std::to_string(c.j) +
+           ") at (x, y) = (" + num(box.xc(c.i)) + ", " + num(box.yc(c.j)) + ") m";
+  };
+  const std::pair<const char*, Vec> fields[] = {
+      {"velocity", s_.vel}, {"pressure", s_.p}, {"level set phi", s_.phi}, {"plastic tensor S", s_.S}};
+  for (const auto& [what, v] : fields) {
+    const diag::CellIndex c = diag::first_nonfinite(g_, v);
+    if (c.found())
+      fail(std::string("non-finite ") + what + " (NaN or Inf), first in " + where(c) + ", at " +
+           when() + " (dt = " + num(dt) +
+           " s): the run blew up; try a smaller time step (time.cfl, time.dt_max, or time.dt "
+           "with time.dt_mode = fixed)");
+  }
+  if (st.fp_capped && st.fp_change > rc_.fp_fail_change)
+    fail("the fixed point of eq. 31 did not converge: after rheology.fp_max_iter = " +
+         std::to_string(st.fp_iters) + " iterations its change is " + num(st.fp_change) +
+         " (above rheology.fp_fail_change = " + num(rc_.fp_fail_change) + "; a sign flip of S "
+         "or s_t is a change of 2), at " + when() + " (dt = " + num(dt) +
+         " s): try a smaller rheology.r_factor (the augmentation), a smaller time step, or "
+         "a wider interface (levelset.eps_cells); --set rheology.fp_monitor=true logs every "
+         "iteration");
+  const diag::SpeedAt sp = diag::max_speed_at(g_, s_.vel);
+  const double h = std::min(g_.hx(), g_.hy());
+  if (sp.speed > rc_.max_speed)
+    fail("speed " + num(sp.speed) + " m/s above time.max_speed = " + num(rc_.max_speed) +
+         " m/s in " + where(sp.at) + ", at " + when() + " (dt = " + num(dt) +
+         " s, CFL number of the step max|u| dt / h = " + num(sp.speed * dt / h) +
+         "): the run is blowing up; try a smaller time step (time.cfl, time.dt_max, or "
+         "time.dt with time.dt_mode = fixed), or raise time.max_speed if such speeds are real");
+  return sp.speed;
+}
+
+void Simulation::scheduled_output(bool at_end) {
+  const double tiny = 1e-12 * std::max(1.0, rc_.t_end);
+  if (s_.t >= lp_.next_out - tiny || at_end) {
+    write_diagnostics();
+    while (lp_.next_out <= s_.t + tiny) lp_.next_out += rc_.output_interval;
+  }
+  if (rc_.vtk_interval > 0 && (s_.t >= lp_.next_vtk - tiny || at_end)) {
+    write_vtk();
+    while (lp_.next_vtk <= s_.t + tiny) lp_.next_vtk += rc_.vtk_interval;
+  }
+}
+
+void Simulation::checkpoint_if_due(double now, double& last_ckpt_wall, bool diag_written) {
+  // The signal flag and the wall clock are per rank: all ranks act on the same decision (one
+  // reduction per step).
+  const bool root = g_.rank() == 0;
+  int flags[2] = {signal::stop_signal(),
+                  root && rc_.checkpoint_wall_s > 0 && now - last_ckpt_wall >= rc_.checkpoint_wall_s};
+  MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, g_.comm());
+  if (flags[0]) {
+    const std::string sig = signal::name(flags[0]);
+    save_checkpoint(sig);
+    // The checkpoint recorded the files' sizes before this extra row: a restart drops it.
+    if (!diag_written) write_diagnostics();
+    const std::string msg = "stopped by " + sig + " at " + when() + "; checkpoint written to " +
+                            rc_.out_dir + "/checkpoint. Continue with: granflow run --restart " +
+                            rc_.out_dir;
+    write_summary("interrupted", msg);
+    throw Interrupted(msg);
+  }
+  const bool by_steps =
+      rc_.checkpoint_interval_steps > 0 && s_.step % rc_.checkpoint_interval_steps == 0;
+  if (by_steps || flags[1]) {
+    save_checkpoint(by_steps ? "every " + std::to_string(rc_.checkpoint_interval_steps) + " steps"
+                             : "wall clock");
+    last_ckpt_wall = wall_now();
+  }
+}
 
 RunSummary Simulation::run() {
   namespace fs = std::filesystem;
   const bool root = g_.rank() == 0;
   if (root) fs::create_directories(rc_.out_dir);
   MPI_Barrier(g_.comm());
-  const auto& cfg = stepper_.config();
   seg_t0_ = wall_now();
+  open_outputs();
+  struct Close {  // the files are closed however run() ends
+    std::unique_ptr<Output>& o;
+    ~Close() { o.reset(); }
+  } close{out_};
 
-  const std::vector<std::string> columns = {
-      "t", "dt", "step", "granular_volume", "volume_change_pct", "max_speed", "granular_u",
-      "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
-      "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m", "bottom_slide_m",
-      "left_normal_N", "left_friction_N", "bottom_normal_N", "bottom_friction_N", "front_x",
-      "backwall_h", "max_p_granular", "max_speed_granular"};
-  const std::string diag_path = rc_.out_dir + "/diagnostics.csv";
-  io::CsvWriter csv = restarted_ ? io::CsvWriter(diag_path, columns, diag_bytes_, g_.comm())
-                                 : io::CsvWriter(diag_path, columns, g_.comm());
-  io::ProbeWriter probes(g_, rc_.out_dir, rc_.probes, io::default_extra_cell_fields(),
-                         restarted_ ? probe_bytes_ : std::vector<long long>{});
-  // Column-collapse measures and their files (profiles.csv, structure.csv, deposit.csv); a
-  // restart restores their history and continues the files from the checkpoint.
-  diag::CollapseMonitor collapse(g_, rc_.collapse, rc_.out_dir, cfg.levelset,
-                                 restarted_ ? &restart_header_ : nullptr);
-  collapse_ = &collapse;
-  struct Unset {
-    diag::CollapseMonitor*& p;
-    ~Unset() { p = nullptr; }
-  } unset_collapse{collapse_};
-  Field dnorm(g_.dm_cell(), "D_norm"), snorm(g_.dm_cell(), "S_norm"),
-      yielded(g_.dm_cell(), "yielded");
-  std::unique_ptr<io::VtkSeries> vtk;
-  if (rc_.vtk_interval > 0) {
-    vtk = std::make_unique<io::VtkSeries>(g_, rc_.out_dir, "fields");
-    if (restarted_) {
-      const int missing = vtk->resume(vtk_entries_);
-      if (missing && root)
-        log::message("granflow: warning: " + std::to_string(missing) +
-                     " VTK file(s) listed at the checkpoint are missing; fields.pvd no "
-                     "longer lists them");
-    }
-  }
-  // The writers, for save_checkpoint (they live until the end of this function).
-  struct Writers {
-    Simulation* sim;
-    ~Writers() { sim->csv_ = nullptr, sim->probes_ = nullptr, sim->vtk_ = nullptr; }
-  } writers{this};
-  csv_ = &csv;
-  probes_ = &probes;
-  vtk_ = vtk.get();
-  // Cell-centred velocity (2 interleaved components, reusing the dm_vel layout) and |u|.
-  Field ucell(g_.dm_vel(), "u_cell"), speed(g_.dm_cell(), "speed");
-
-  const double eps = cfg.levelset ? cfg.eps : 0.0;
-  auto volume = [&]() {
-    return cfg.levelset ? diag::granular_volume(g_, s_.phi, eps) : g_.box().Lx * g_.box().Ly;
-  };
-  RunSummary sum;
-
-  auto write_diag = [&]() {
-    prof::Scope pscope(prof::Output);
-    const double vol = volume();
-    const double vchange = lp_.vol0 > 0 ? 100.0 * (vol - lp_.vol0) / lp_.vol0 : 0.0;
-    const double div = diag::max_divergence(g_, s_.vel);
-    lp_.max_div = std::max(lp_.max_div, div);
-    const auto gu = diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
-    // Where the granular material sticks to / slides on the back wall and the bottom (eqs. 22-23).
-    const auto wc = stepper_.wall_contact(s_);
-    const auto &stick = wc.stick_m, &slide = wc.slide_m;
-    const StepStats& last = lp_.last;
-    const auto col = collapse.sample(s_.t, s_.phi, s_.vel, s_.p);
-    csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
-             diag::max_speed(g_, s_.vel), gu[0], gu[1], diag::kinetic_energy(g_, s_.vel, s_.rho), div,
-             static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
-             static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
-             slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2],
-             col.front_x, col.backwall_h, col.max_p_granular, col.max_speed_granular});
-    // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
-    io::NamedCellFields extra;
-    if (probes.samples("D_norm") || probes.samples("S_norm")) {
-      stepper_.derived_fields(s_, dnorm, snorm, yielded);
-      extra = {{"D_norm", dnorm}, {"S_norm", snorm}};
-    }
-    if (probes.samples("kappa")) extra.emplace_back("kappa", stepper_.kappa());
-    probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta, extra);
-    lp_.volume_change_pct = vchange;
-    // Mass conservation is not exact with a level set: a drift beyond the threshold is a
-    // warning (counted in summary.json), said once.
-    if (cfg.levelset && std::abs(vchange) > rc_.volume_warn_pct) {
-      if (lp_.volume_warn_rows == 0 && root)
-        log::message("granflow: warning: the granular volume has changed by " + num(vchange) +
-                     " % at t = " + num(s_.t) + " s (beyond output.volume_warn_pct = " +
-                     num(rc_.volume_warn_pct) +
-                     " %): the interface is under-resolved; try a larger grid.n or a smaller "
-                     "time.cfl (counted in summary.json)");
-      ++lp_.volume_warn_rows;
-    }
-  };
-  auto write_vtk = [&]() {
-    if (!vtk) return;
-    prof::Scope pscope(prof::Output);
-    io::cell_velocity(g_, s_.vel, ucell, nullptr, speed);
-    stepper_.derived_fields(s_, dnorm, snorm, yielded);
-    vtk->write(s_.t, {{"phi", s_.phi, 1}, {"rho", s_.rho, 1}, {"u", ucell, 2},
-                      {"speed", speed, 1}, {"p", s_.p, 1}, {"eta", s_.eta, 1},
-                      {"D_norm", dnorm, 1}, {"S_norm", snorm, 1}, {"yielded", yielded, 1},
-                      {"kappa", stepper_.kappa(), 1}});
-  };
-  const bool prescribed = cfg.prescribed != PrescribedFlow::None;
-  auto write_summary = [&](const std::string& status, const std::string& message) {
-    sum.steps = s_.step;
-    sum.t_end = s_.t;
-    sum.wall_s = lp_.wall_s + (wall_now() - seg_t0_);
-    sum.max_divergence = lp_.max_div;
-    sum.volume_change_pct = lp_.volume_change_pct;
-    io::JsonObject js;
-    js.set("title", rc_.title)
-        .set("status", status)
-        .set("version", std::string(gf::git_version()))
-        .set("ranks", static_cast<long long>(g_.size()))
-        .set("nx", static_cast<long long>(g_.nx()))
-        .set("ny", static_cast<long long>(g_.ny()))
-        .set("cells", static_cast<long long>(g_.nx() * g_.ny()))
-        .set("steps", sum.steps)
-        .set("t_end", sum.t_end)
-        .set("wall_s", sum.wall_s)
-        .set("s_per_step", sum.steps > 0 ? sum.wall_s / sum.steps : 0.0)
-        .set("restarts", lp_.restarts)
-        .set("max_divergence", sum.max_divergence)
-        .set("volume_change_pct", sum.volume_change_pct)
-        .set("max_speed", diag::max_speed(g_, s_.vel))
-        .set("kinetic_energy", diag::kinetic_energy(g_, s_.vel, s_.rho))
-        .set("max_fp_iters", static_cast<long long>(lp_.max_fp_iters))
-        .set("fp_iters_total", lp_.fp_iters_total)
-        .set("visc_its_total", lp_.visc_its_total)
-        .set("visc_polish_its_total", lp_.visc_polish_its_total)
-        .set("visc_polish_steps", lp_.visc_polish_steps)
-        .set("redistancings", lp_.redistancings)
-        .set("warnings_fp_capped_steps", lp_.fp_capped_steps)
-        .set("fp_capped_max_change", lp_.fp_capped_change)
-        .set("warnings_volume_drift_rows", lp_.volume_warn_rows)
-        .set("warnings_pressure_gmres_fallbacks", lp_.pres_fallbacks)
-        .set("mu_i_floor_cells_max", lp_.mu_floor_max)
-        .set("mu_i_cap_cells_max", lp_.mu_cap_max);
-    if (lp_.stress_steps >= 0)
-      js.set("initial_stress_steps", lp_.stress_steps)
-          .set("initial_stress_speed_mps", lp_.stress_speed);
-    collapse.summarize(js);
-    {
-      // Time by phase (core/Profile.hpp), the largest over the ranks, s: for this process, i.e.
-      // since the start or the last restart. Peak resident memory, MiB: largest rank, all ranks.
-      std::array<double, prof::kCount + 1> loc{}, mx{};
-      for (int k = 0; k < prof::kCount; ++k) loc[k] = prof::seconds()[k];
-      loc[prof::kCount] = prof::peak_rss_mib();
-      MPI_Allreduce(loc.data(), mx.data(), prof::kCount + 1, MPI_DOUBLE, MPI_MAX, g_.comm());
-      double rss_sum = 0;
-      MPI_Allreduce(&loc[prof::kCount], &rss_sum, 1, MPI_DOUBLE, MPI_SUM, g_.comm());
-      for (int k = 0; k < prof::kCount; ++k)
-        js.set(std::string("time_") + prof::name(static_cast<prof::Phase>(k)) + "_s", mx[k]);
-      js.set("peak_rss_mib_max_rank", mx[prof::kCount]).set("peak_rss_mib_all_ranks", rss_sum);
-    }
-    if (last_ckpt_step_ >= 0)
-      js.set("checkpoint_t", last_ckpt_t_).set("checkpoint_step", last_ckpt_step_);
-    if (!message.empty()) js.set("message", message);
-    if (prescribed && cfg.levelset) {
-      // Sharp-interface measures against the initial shape (levelset/LevelSet.hpp).
-      const double a0 = levelset::granular_area(g_, phi0_, 0.0);
-      const double a1 = levelset::granular_area(g_, s_.phi, 0.0);
-      js.set("area_change_pct", a0 > 0 ? 100.0 * (a1 - a0) / a0 : 0.0)
-          .set("interface_l1_error_m2", levelset::interface_l1_error(g_, s_.phi, phi0_));
-    }
-    js.write_root(rc_.out_dir + "/summary.json", g_.comm());
-  };
-  // Where a failure happened, for the message.
-  const Box& box = g_.box();
-  auto where = [&](const diag::CellIndex& c) {
-    return "cell (i, j) = (" + std::to_string(c.i) + ", " + std::to_string(c.j) +
-           ") at (x, y) = (" + num(box.xc(c.i)) + ", " + num(box.yc(c.j)) + ") m";
-  };
-  auto when = [&]() {
-    return "t = " + num(s_.t) + " s, step " + std::to_string(s_.step);
-  };
-  // A failed run: its diagnostics row (the bad values included) and summary.json, then the
-  // error. No checkpoint: the last one written stays the last good state.
-  auto fail = [&](const std::string& what) {
-    std::string msg = what;
-    if (last_ckpt_step_ >= 0)
-      msg += ". The last good checkpoint (t = " + num(last_ckpt_t_) + " s, step " +
-             std::to_string(last_ckpt_step_) + ") is kept in " + rc_.out_dir +
-             "/checkpoint: continue from it with `granflow run --restart " + rc_.out_dir +
-             "` and a smaller step (--set time.cfl=... or time.dt=...)";
-    else
-      msg += ". No checkpoint was written before the failure (output.checkpoint_interval_steps, "
-             "output.checkpoint_wall_s)";
-    write_diag();
-    write_summary("failed", msg);
-    throw RunError(msg);
-  };
-
-  if (!restarted_) {
-    try {
-      stepper_.initialize(s_);
-    } catch (const RunError& e) {
-      fail(std::string(e.what()) + " (in the initial pressure of the fluid at rest, t = 0)");
-    }
-    if (rc_.stress_equilibrium && !prescribed) {
-      const double dt0 = choose_dt(0.0, 0.0);
-      try {
-        const double eps = stepper_.config().eps;
-        const auto [n, speed] = stepper_.equilibrate(
-            s_, dt0, rc_.stress_max_steps, rc_.stress_tol,
-            [&, k = 0](const State& st) mutable {
-              const double v = diag::max_granular_speed(g_, st.vel, st.phi, eps);
-              if (++k % 50 == 0 && g_.rank() == 0) {
-                std::printf("granflow: initial stress: pseudo-step %d, granular speed %s m/s\n",
-                            k, num(v).c_str());
-                std::fflush(stdout);
-              }
-              return v;
-            });
-        lp_.stress_steps = n;
-        lp_.stress_speed = speed;
-      } catch (const RunError& e) {
-        fail(std::string(e.what()) +
-             " (in the initial stress, initial.stress = \"equilibrium\")");
-      }
-      if (g_.rank() == 0) {
-        std::printf(
-            "granflow: initial stress: %lld pseudo-steps of %s s, the last one made %s m/s%s\n",
-            lp_.stress_steps, num(dt0).c_str(), num(lp_.stress_speed).c_str(),
-            lp_.stress_speed < rc_.stress_tol
-                ? ""
-                : " (WARNING: above initial.stress_tol: no equilibrium reached)");
-        std::fflush(stdout);
-      }
-    }
-    // A prescribed flow that returns the interface to its start (one turn, a reversed vortex)
-    // has the initial level set as exact answer: keep it for the interface error at the end.
-    if (prescribed) GF_PETSC(VecCopy(s_.phi, phi0_));
-    lp_.vol0 = volume();
-    write_diag();
-    write_vtk();
-    lp_.next_out = s_.t + rc_.output_interval;
-    lp_.next_vtk = s_.t + rc_.vtk_interval;
-  } else {
+  if (!restarted_)
+    start();
+  else
     stepper_.resume(s_);
-  }
   const double t0 = seg_t0_;
   double last_progress = t0, last_ckpt_wall = t0;
   const long long step0 = s_.step;
   const double tiny = 1e-12 * std::max(1.0, rc_.t_end);
-  const double h = std::min(g_.hx(), g_.hy());
   double umax = diag::max_speed(g_, s_.vel);
   while (s_.t < rc_.t_end - tiny && (rc_.max_steps <= 0 || s_.step - step0 < rc_.max_steps)) {
     const double dt = choose_dt(umax, lp_.dt_prev);
@@ -504,101 +542,15 @@ RunSummary Simulation::run() {
       fail("time step collapsed to " + num(dt) + " s (floor time.dt_min = " + num(rc_.dt_min) +
            " s) at " + when() + ", max |u| = " + num(umax) +
            " m/s: the flow is blowing up; try a smaller time.cfl or time.dt_max");
-    const double t_before = s_.t;
-    try {
-      lp_.last = stepper_.step(s_, dt);
-    } catch (const RunError& e) {
-      fail(std::string(e.what()) + " (in the step from t = " + num(t_before) + " s, step " +
-           std::to_string(s_.step + 1) + ", dt = " + num(dt) + " s)");
-    }
-    const StepStats& last = lp_.last;
-    if (last.fp_capped) {
-      ++lp_.fp_capped_steps;
-      lp_.fp_capped_change = std::max(lp_.fp_capped_change, last.fp_change);
-    }
-    if (last.pres_fallback) {
-      if (lp_.pres_fallbacks == 0 && g_.rank() == 0)
-        log::message("granflow: warning: the pressure solve's CG broke down (indefinite "
-                     "preconditioner) in the step to t = " + num(s_.t) +
-                     " s; solved again with GMRES (further cases counted in summary.json)");
-      ++lp_.pres_fallbacks;
-    }
-    lp_.mu_floor_max = std::max(lp_.mu_floor_max, last.mu_i_floor_cells);
-    lp_.mu_cap_max = std::max(lp_.mu_cap_max, last.mu_i_cap_cells);
-    lp_.max_fp_iters = std::max(lp_.max_fp_iters, last.fp_iters);
-    lp_.fp_iters_total += last.fp_iters;
-    lp_.visc_its_total += last.visc_its;
-    lp_.visc_polish_its_total += last.visc_polish_its;
-    if (last.visc_polish_its > 0) ++lp_.visc_polish_steps;
-    if (last.redistanced) ++lp_.redistancings;
-    lp_.dt_prev = dt;
-
-    // 1. Failure detection: a non-finite value in any prognostic field, or a speed no flow of
-    //    this solver reaches (an explicit-convection blow-up grows without NaN for a while).
-    const std::pair<const char*, Vec> fields[] = {
-        {"velocity", s_.vel}, {"pressure", s_.p}, {"level set phi", s_.phi}, {"plastic tensor S", s_.S}};
-    for (const auto& [what, v] : fields) {
-      const diag::CellIndex c = diag::first_nonfinite(g_, v);
-      if (c.found())
-        fail(std::string("non-finite ") + what + " (NaN or Inf), first in " + where(c) + ", at " +
-             when() + " (dt = " + num(dt) +
-             " s): the run blew up; try a smaller time step (time.cfl, time.dt_max, or time.dt "
-             "with time.dt_mode = fixed)");
-    }
-    if (last.fp_capped && last.fp_change > rc_.fp_fail_change)
-      fail("the fixed point of eq. 31 did not converge: after rheology.fp_max_iter = " +
-           std::to_string(last.fp_iters) + " iterations its change is " + num(last.fp_change) +
-           " (above rheology.fp_fail_change = " + num(rc_.fp_fail_change) + "; a sign flip of S "
-           "or s_t is a change of 2), at " + when() + " (dt = " + num(dt) +
-           " s): try a smaller rheology.r_factor (the augmentation), a smaller time step, or "
-           "a wider interface (levelset.eps_cells); -fp_monitor prints every iteration");
-    const diag::SpeedAt sp = diag::max_speed_at(g_, s_.vel);
-    umax = sp.speed;
-    if (umax > rc_.max_speed)
-      fail("speed " + num(umax) + " m/s above time.max_speed = " + num(rc_.max_speed) +
-           " m/s in " + where(sp.at) + ", at " + when() + " (dt = " + num(dt) +
-           " s, CFL number of the step max|u| dt / h = " + num(umax * dt / h) +
-           "): the run is blowing up; try a smaller time step (time.cfl, time.dt_max, or "
-           "time.dt with time.dt_mode = fixed), or raise time.max_speed if such speeds are real");
-
+    // 1. The step and its failure checks.
+    umax = advance(dt);
     // 2. Scheduled output.
     const bool at_end = s_.t >= rc_.t_end - tiny;
-    bool diag_now = false;
-    if (s_.t >= lp_.next_out - tiny || at_end) {
-      write_diag();
-      diag_now = true;
-      while (lp_.next_out <= s_.t + tiny) lp_.next_out += rc_.output_interval;
-    }
-    if (rc_.vtk_interval > 0 && (s_.t >= lp_.next_vtk - tiny || at_end)) {
-      write_vtk();
-      while (lp_.next_vtk <= s_.t + tiny) lp_.next_vtk += rc_.vtk_interval;
-    }
-
-    // 3. Checkpoints. The signal flag and the wall clock are per rank: all ranks act on the
-    //    same decision (one reduction per step).
+    const bool diag_now = s_.t >= lp_.next_out - tiny || at_end;
+    scheduled_output(at_end);
+    // 3. Checkpoints (and a polite stop on SIGINT/SIGTERM).
     const double now = wall_now();
-    int flags[2] = {signal::stop_signal(),
-                    root && rc_.checkpoint_wall_s > 0 && now - last_ckpt_wall >= rc_.checkpoint_wall_s};
-    MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, g_.comm());
-    if (flags[0]) {
-      const std::string sig = signal::name(flags[0]);
-      save_checkpoint(sig);
-      // The checkpoint recorded the files' sizes before this extra row: a restart drops it.
-      if (!diag_now) write_diag();
-      const std::string msg = "stopped by " + sig + " at " + when() + "; checkpoint written to " +
-                              rc_.out_dir + "/checkpoint. Continue with: granflow run --restart " +
-                              rc_.out_dir;
-      write_summary("interrupted", msg);
-      throw Interrupted(msg);
-    }
-    const bool by_steps =
-        rc_.checkpoint_interval_steps > 0 && s_.step % rc_.checkpoint_interval_steps == 0;
-    if (by_steps || flags[1]) {
-      save_checkpoint(by_steps ? "every " + std::to_string(rc_.checkpoint_interval_steps) + " steps"
-                               : "wall clock");
-      last_ckpt_wall = wall_now();
-    }
-
+    checkpoint_if_due(now, last_ckpt_wall, diag_now);
     // 4. Progress.
     if (root && rc_.progress_interval > 0 && now - last_progress >= rc_.progress_interval) {
       const double rate = (s_.step - step0) / (now - t0);
@@ -613,7 +565,7 @@ RunSummary Simulation::run() {
   // The end (t_end or time.max_steps): a checkpoint, from which a longer run can continue.
   if (s_.step != last_ckpt_step_) save_checkpoint("end of run");
   write_summary(s_.t >= rc_.t_end - tiny ? "completed" : "stopped at time.max_steps", "");
-  return sum;
+  return summary_;
 }
 
 }  // namespace gf

@@ -1,5 +1,5 @@
 #pragma once
-// A simulation is a model (grid, state, stepper) plus the time loop: the time-step choice,
+// A simulation is a model (grid, state, time stepper) plus the time loop: the time-step choice,
 // scheduled diagnostics, VTK output and probes, checkpoints, the progress line, failure
 // detection and the final summary. It reads the state only; the physics is in stepper/.
 //
@@ -16,18 +16,19 @@
 // checkpoint and cuts the output files back to their size at the checkpoint, so a restarted
 // run writes exactly the rows and files the uninterrupted run writes after that point.
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "diagnostics/Collapse.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
 #include "io/Checkpoint.hpp"
+#include "io/Collapse.hpp"
 #include "io/Csv.hpp"
 #include "io/Probes.hpp"
 #include "io/Vtk.hpp"
-#include "stepper/Stepper.hpp"
+#include "stepper/TimeStepper.hpp"
 
 namespace gf {
 
@@ -51,7 +52,7 @@ struct RunConfig {
   int stress_max_steps = 1000;
   double stress_tol = 1e-7;  // m/s
   std::vector<io::ProbeSpec> probes;
-  diag::CollapseConfig collapse;  // front, profile, deposit measures (diagnostics/Collapse.hpp)
+  io::CollapseConfig collapse;  // front, profile, deposit measures (io/Collapse.hpp)
   std::string out_dir;
   std::string title;
 };
@@ -61,9 +62,40 @@ struct RunSummary {
   double t_end = 0, wall_s = 0, max_divergence = 0, volume_change_pct = 0;
 };
 
+// Everything of the loop that the next steps and the final summary depend on: checkpointed
+// (sim/Counters.hpp lists each member once, with its checkpoint and summary.json keys).
+struct Loop {
+  double dt_prev = 0;                 // s, the last step (0 before the first)
+  double next_out = 0, next_vtk = 0;  // s, next diagnostics / VTK time
+  double vol0 = 0;                    // m^2/m, granular volume at t = 0
+  double max_div = 0;                 // 1/s, largest divergence in a diagnostics row
+  double volume_change_pct = 0;       // %, of the last diagnostics row
+  double wall_s = 0;                  // s of wall clock of the runs before this one
+  long long fp_capped_steps = 0;      // steps whose fixed point stopped at its cap (a warning)
+  double fp_capped_change = 0;        // the largest last change of those steps
+  long long volume_warn_rows = 0;     // diagnostics rows with |volume change| > volume_warn_pct
+  long long pres_fallbacks = 0;       // pressure solves made again with GMRES (a warning)
+  long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
+  long long restarts = 0;
+  int max_fp_iters = 0;
+  long long fp_iters_total = 0, visc_its_total = 0;  // sums over the steps (cost measures)
+  // solver.viscous_local_margin: iterations of the closing full solves (included in
+  // visc_its_total), and the steps where it took any: what the local solves missed.
+  long long visc_polish_its_total = 0, visc_polish_steps = 0;
+  long long redistancings = 0;  // steps that redistanced phi
+  StepStats last;               // the last step's statistics (diagnostics columns)
+  // initial.stress = "equilibrium": pseudo-steps taken, the velocity the last one made (m/s);
+  // -1: not asked for.
+  long long stress_steps = -1;
+  double stress_speed = -1;
+  // Adds a step's statistics to the counters and keeps them as `last`.
+  void add(const StepStats& st, double dt);
+};
+
 class Simulation {
  public:
-  Simulation(const Grid& g, State& s, Stepper& stepper, const RunConfig& rc);
+  Simulation(const Grid& g, State& s, TimeStepper& stepper, const RunConfig& rc);
+  ~Simulation();
   // Text files stored in every checkpoint folder (name, content), e.g. the resolved case,
   // which a restart compares with the case it is given.
   void set_checkpoint_files(std::vector<std::pair<std::string, std::string>> files) {
@@ -84,37 +116,11 @@ class Simulation {
   double choose_dt(double max_speed, double dt_prev) const;
 
  private:
-  // Everything of the loop that the next steps and the final summary depend on: checkpointed.
-  struct Loop {
-    double dt_prev = 0;              // s, the last step (0 before the first)
-    double next_out = 0, next_vtk = 0;  // s, next diagnostics / VTK time
-    double vol0 = 0;                 // m^2/m, granular volume at t = 0
-    double max_div = 0;              // 1/s, largest divergence in a diagnostics row
-    double volume_change_pct = 0;    // %, of the last diagnostics row
-    double wall_s = 0;               // s of wall clock of the runs before this one
-    long long fp_capped_steps = 0;   // steps whose fixed point stopped at its cap (a warning)
-    double fp_capped_change = 0;     // the largest last change of those steps
-    long long volume_warn_rows = 0;  // diagnostics rows with |volume change| > volume_warn_pct
-    long long pres_fallbacks = 0;    // pressure solves made again with GMRES (a warning)
-    long long mu_floor_max = 0, mu_cap_max = 0;  // mu(I): most granular cells at the bounds
-    long long restarts = 0;
-    int max_fp_iters = 0;
-    long long fp_iters_total = 0, visc_its_total = 0;  // sums over the steps (cost measures)
-    // solver.viscous_local_margin: iterations of the closing full solves (included in
-    // visc_its_total), and the steps where it took any: what the local solves missed.
-    long long visc_polish_its_total = 0, visc_polish_steps = 0;
-    long long redistancings = 0;     // steps that redistanced phi
-    StepStats last;                  // the last step's statistics (diagnostics columns)
-    // initial.stress = "equilibrium": pseudo-steps taken, the velocity the last one made (m/s);
-    // -1: not asked for.
-    long long stress_steps = -1;
-    double stress_speed = -1;
-  };
-  void save_checkpoint(const std::string& reason);
+  struct Output;  // the files and scratch fields of run() (Simulation.cpp)
 
   const Grid& g_;
   State& s_;
-  Stepper& stepper_;
+  TimeStepper& stepper_;
   RunConfig rc_;
   Loop lp_;
   std::vector<std::pair<std::string, std::string>> ckpt_files_;
@@ -123,16 +129,31 @@ class Simulation {
   long long diag_bytes_ = 0;
   std::vector<long long> probe_bytes_;
   std::vector<std::pair<double, std::string>> vtk_entries_;
-  Field phi0_;  // the initial level set (prescribed flows: the exact answer after one turn)
-  // The current writers (set during run()), for save_checkpoint.
-  const io::CsvWriter* csv_ = nullptr;
-  const io::ProbeWriter* probes_ = nullptr;
-  const io::VtkSeries* vtk_ = nullptr;
-  diag::CollapseMonitor* collapse_ = nullptr;
+  Field phi0_;  // the initial level set (a flow returning to its start: the exact answer)
+  std::unique_ptr<Output> out_;  // during run()
   io::CheckpointHeader restart_header_;  // of the checkpoint restart() loaded
   long long last_ckpt_step_ = -1;  // step and time of the last checkpoint written or loaded
   double last_ckpt_t_ = 0;
   double seg_t0_ = 0;  // wall clock at the start of run(), s
+
+  // The stages of run().
+  void open_outputs();
+  void start();                         // t = 0: the model's start, its first outputs
+  void equilibrate();                   // initial.stress = "equilibrium"
+  double advance(double dt);            // one step, its counters and failure checks; max |u|
+  void scheduled_output(bool at_end);  // diagnostics, probes, VTK when due
+  void checkpoint_if_due(double now, double& last_ckpt_wall, bool diag_written);
+  // Outputs.
+  double granular_volume() const;
+  void write_diagnostics();
+  void write_vtk();
+  void write_summary(const std::string& status, const std::string& message);
+  void save_checkpoint(const std::string& reason);
+  // A failed run: its diagnostics row (the bad values included) and summary.json, then the
+  // error. No checkpoint: the last one written stays the last good state.
+  [[noreturn]] void fail(const std::string& what);
+  std::string when() const;  // "t = ... s, step N"
+  RunSummary summary_;
 };
 
 }  // namespace gf

@@ -19,9 +19,13 @@ and exits 0 on pass, 1 on a failed check, 2 on unreadable or malformed input.
       folder is listed; optionally exactly N entries, or the same (time, file) list as OTHER.
 """
 import argparse
+import os
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import granflow_run as gr  # noqa: E402  (the one reader of granflow's files)
 
 
 class InputProblem(Exception):
@@ -31,26 +35,16 @@ class InputProblem(Exception):
 def read_csv(path):
     """(header list, 2-D float array) of a CSV with one header line; '#' lines are comments."""
     try:
-        with open(path) as f:
-            lines = [ln.strip() for ln in f if ln.strip() and not ln.lstrip().startswith("#")]
+        t = gr.read_csv(path, units={})
     except OSError as e:
         raise InputProblem(f"cannot read {path}: {e}")
-    if not lines:
+    except gr.RunFileError as e:
+        raise InputProblem(str(e))
+    if not t.columns:
         raise InputProblem(f"{path}: empty")
-    header = [h.strip() for h in lines[0].split(",")]
-    rows = []
-    for n, ln in enumerate(lines[1:], start=2):
-        parts = ln.split(",")
-        if len(parts) != len(header):
-            raise InputProblem(f"{path}: data line {n} has {len(parts)} fields, header "
-                               f"has {len(header)}")
-        try:
-            rows.append([float(p) for p in parts])
-        except ValueError:
-            raise InputProblem(f"{path}: data line {n} is not numeric: {ln!r}")
-    if not rows:
+    if not len(t):
         raise InputProblem(f"{path}: no data rows")
-    return header, np.array(rows, dtype=float)
+    return t.columns, t.array()
 
 
 def col(header, data, name, path):
@@ -232,19 +226,16 @@ def cmd_extract(a):
 
 
 def pvd_entries(path):
-    import xml.etree.ElementTree as ET
     try:
-        root = ET.parse(path).getroot()
-    except (OSError, ET.ParseError) as e:
+        return gr.read_pvd(path, join=False)
+    except OSError as e:
         raise InputProblem(f"{path}: not valid XML: {e}")
-    if root.tag != "VTKFile" or root.get("type") != "Collection":
-        raise InputProblem(f"{path}: not a VTK Collection (root <{root.tag} type={root.get('type')}>)")
-    return [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")]
+    except gr.RunFileError as e:
+        raise InputProblem(str(e))
 
 
 def cmd_pvd(a):
     import glob
-    import os
     entries = pvd_entries(a.pvd)
     folder = os.path.dirname(os.path.abspath(a.pvd))
     base = os.path.splitext(os.path.basename(a.pvd))[0]

@@ -29,13 +29,14 @@ for g in cell_node cell; do
     { cat "$tmp/$g.log"; echo "FAIL: run $g"; exit 1; }
 done
 
-/usr/bin/python3 - "$tmp" <<'PY'
-import csv, sys
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
+import sys
+import granflow_run as gr
 tmp = sys.argv[1]
 ok = True
 def load(g):
-    rows = list(csv.DictReader(open(f"{tmp}/{g}/diagnostics.csv")))
-    return [float(r["t"]) for r in rows], [float(r["kinetic_energy"]) for r in rows]
+    d = gr.read_csv(f"{tmp}/{g}/diagnostics.csv")
+    return d["t"].tolist(), d["kinetic_energy"].tolist()
 t, ke = load("cell_node")
 ke0 = ke[0]
 thr = 1e-14 * ke0

@@ -43,9 +43,10 @@ for n in 16 32 64; do
     { cat "$tmp/log$n"; echo "FAIL: run n=$n"; exit 1; }
 done
 
-/usr/bin/python3 - "$tmp" <<'PY'
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
 import sys
 import numpy as np
+import granflow_run as gr
 
 tmp = sys.argv[1]
 G, mu, tau_y, H = 1.0, 1.0, 0.1, 0.5
@@ -68,14 +69,14 @@ def exact(s):
 
 res = {}
 for n in (16, 32, 64):
-    d = np.genfromtxt(f"{tmp}/n{n}/probes/profile.csv", delimiter=",", names=True)
-    times = np.unique(d["t"])
+    d = gr.read_csv(f"{tmp}/n{n}/probes/profile.csv")
+    times = d.times
     h = 1.0 / n
     blocks = []
     for tv in times[-2:]:
-        b = d[d["t"] == tv]
+        b = d.where(d["t"] == tv)
         k = np.abs(b["y"] * n - 0.5 - np.round(b["y"] * n - 0.5)) < 1e-9  # u sample heights
-        b = b[k]
+        b = b.where(k)
         if len(b) != n:
             print(f"FAIL: n={n}: {len(b)} probe rows at the u sample heights, expected {n}")
             sys.exit(1)

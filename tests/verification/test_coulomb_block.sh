@@ -37,18 +37,18 @@ wait || true
 for n in 30 60; do
   [ -f "$tmp/slide$n/summary.json" ] || { cat "$tmp/log$n"; echo "FAIL: run n=$n"; exit 1; }
 done
-/usr/bin/python3 - "$tmp" <<'PY'
-import csv, math, sys
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
+import math, sys
 import numpy as np
+import granflow_run as gr
 g, th, ab = 9.81, math.radians(30), math.radians(20)
 exact = g * (math.sin(th) - math.tan(ab) * math.cos(th))
 # block 0.1 m x 0.05 m of rho 1550: the friction force at the Coulomb limit, N/m
 f_exact = math.tan(ab) * 1550 * 0.1 * 0.05 * g * math.cos(th)
 err, ferr = {}, {}
 for n in (30, 60):
-    rows = list(csv.DictReader(open(f"{sys.argv[1]}/slide{n}/diagnostics.csv")))
-    t = np.array([float(r["t"]) for r in rows]); u = np.array([float(r["granular_u"]) for r in rows])
-    f = np.array([float(r["bottom_friction_N"]) for r in rows])
+    d = gr.read_csv(f"{sys.argv[1]}/slide{n}/diagnostics.csv")
+    t, u, f = d["t"], d["granular_u"], d["bottom_friction_N"]
     m = t >= 0.02 - 1e-12
     a = np.polyfit(t[m], u[m], 1)[0]
     err[n] = a / exact - 1
@@ -66,14 +66,15 @@ PY
   --set initial.stress=equilibrium --set initial.stress_tol=1e-9 --set rheology.fp_tol=1e-9 \
   --set rheology.fp_max_iter=1000 \
   --out "$tmp/hold" > "$tmp/loghold" 2>&1 || { cat "$tmp/loghold"; echo "FAIL: run hold"; exit 1; }
-/usr/bin/python3 - "$tmp/hold" <<'PY'
-import csv, json, math, sys
-rows = list(csv.DictReader(open(sys.argv[1] + "/diagnostics.csv")))
-summ = json.load(open(sys.argv[1] + "/summary.json"))
-mean = max(math.hypot(float(r["granular_u"]), float(r["granular_v"])) for r in rows)
-peak = max(float(r["max_speed_granular"]) for r in rows)
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp/hold" <<'PY'
+import math, sys
+import granflow_run as gr
+run = gr.Run(sys.argv[1])
+d, summ = run.diagnostics, run.summary
+mean = max(math.hypot(u, v) for u, v in zip(d["granular_u"].tolist(), d["granular_v"].tolist()))
+peak = max(d["max_speed_granular"].tolist())
 v0 = summ.get("initial_stress_speed_mps", 1.0)
-dv = max(abs(float(r["volume_change_pct"])) for r in rows)
+dv = max(abs(x) for x in d["volume_change_pct"].tolist())
 print(f"holding block (theta = 15 deg < alpha_b = 20 deg): {summ.get('initial_stress_steps')} "
       f"pseudo-steps (last {v0:.2e} m/s); max mean granular speed {mean:.3e} m/s, "
       f"max granular speed {peak:.3e} m/s, volume change {dv:.1e} %")

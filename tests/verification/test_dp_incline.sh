@@ -39,10 +39,11 @@ done
 "$bin" run "$case_file" --set "physics.gravity=[0.25881904510252074, -0.9659258262890683]" \
   --out "$tmp/rest" > "$tmp/logrest" 2>&1 || { cat "$tmp/logrest"; echo "FAIL: run rest"; exit 1; }
 
-/usr/bin/python3 - "$tmp" <<'PY'
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
 import math
 import sys
 import numpy as np
+import granflow_run as gr
 
 tmp = sys.argv[1]
 h, rho, eta, g = 1.0, 1.0, 1.0, 1.0
@@ -58,11 +59,11 @@ def fail(msg):
 
 def blocks(run, n):
     """The last two output blocks at the u sample heights (j + 1/2) h."""
-    d = np.genfromtxt(f"{tmp}/{run}/probes/profile.csv", delimiter=",", names=True)
+    d = gr.read_csv(f"{tmp}/{run}/probes/profile.csv")
     out = []
-    for tv in np.unique(d["t"])[-2:]:
-        b = d[d["t"] == tv]
-        b = b[np.abs(b["y"] * n - 0.5 - np.round(b["y"] * n - 0.5)) < 1e-9]
+    for tv in d.times[-2:]:
+        b = d.where(d["t"] == tv)
+        b = b.where(np.abs(b["y"] * n - 0.5 - np.round(b["y"] * n - 0.5)) < 1e-9)
         if len(b) != n:
             print(f"FAIL: {run}: {len(b)} probe rows at the sample heights, expected {n}")
             sys.exit(1)

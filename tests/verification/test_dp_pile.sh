@@ -18,13 +18,11 @@ rc=0
 "$bin" run "$src/cases/verify/dp_pile.toml" --out "$tmp/run" --set output.vtk_interval=0 \
   > "$tmp/log" 2>&1 || rc=$?
 if ((rc)); then cat "$tmp/log"; echo "FAIL: granflow run exited with $rc"; exit 1; fi
-/usr/bin/python3 - "$tmp/run/diagnostics.csv" "$tmp/run/summary.json" <<'PY'
-import csv, json, sys
-rows = list(csv.DictReader(open(sys.argv[1])))
-t = [float(r["t"]) for r in rows]
-g = [float(r["max_speed_granular"]) for r in rows]
-a = [float(r["max_speed"]) for r in rows]
-v = [float(r["volume_change_pct"]) for r in rows]
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp/run/diagnostics.csv" "$tmp/run/summary.json" <<'PY'
+import json, sys
+import granflow_run as gr
+rows = gr.read_csv(sys.argv[1])
+t, g, a, v = (rows[k].tolist() for k in ("t", "max_speed_granular", "max_speed", "volume_change_pct"))
 summ = json.load(open(sys.argv[2]))
 steps, v0 = summ.get("initial_stress_steps", -1), summ.get("initial_stress_speed_mps", 1.0)
 print(f"rows {len(rows)}, t_end {t[-1]:.3f} s; "

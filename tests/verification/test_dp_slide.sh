@@ -30,34 +30,35 @@ for n in 16 32; do
 done
 "$bin" run "$case_file" --set "physics.gravity=[1.703491, -9.660964]" --out "$tmp/hold" \
   > "$tmp/loghold" 2>&1 || { cat "$tmp/loghold"; echo "FAIL: run hold"; exit 1; }
-/usr/bin/python3 - "$tmp" <<'PY'
-import csv, math, sys
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
+import math, sys
 import numpy as np
+import granflow_run as gr
 g, th, ab = 9.81, math.radians(20), math.radians(15)
 exact = g * (math.sin(th) - math.tan(ab) * math.cos(th))
 # weight per unit width pressing on the bottom: 0.1 m x 0.05 m of granular + 0.05 m of air
 weight = (1450.0 + 1.2) * 0.1 * 0.05 * g * math.cos(th)
 ok = True
 for n in (16, 32):
-    rows = list(csv.DictReader(open(f"{sys.argv[1]}/slide{n}/diagnostics.csv")))
-    t = np.array([float(r["t"]) for r in rows]); u = np.array([float(r["granular_u"]) for r in rows])
+    d = gr.read_csv(f"{sys.argv[1]}/slide{n}/diagnostics.csv")
+    t, u = d["t"], d["granular_u"]
     m = t >= 0.02 - 1e-12
     a = np.polyfit(t[m], u[m], 1)[0]
-    N = np.array([float(r["bottom_normal_N"]) for r in rows])[m]
-    F = np.array([abs(float(r["bottom_friction_N"])) for r in rows])[m]
+    N = d["bottom_normal_N"][m]
+    F = np.abs(d["bottom_friction_N"])[m]
     ea, eN, eF = a / exact - 1, N.mean() / weight - 1, np.max(np.abs(F / N - math.tan(ab)))
     print(f"n={n}: a = {a:.4f} m/s^2 (exact {exact:.4f}, {100*ea:+.2f} %), normal force "
           f"{N.mean():.2f} N/m (weight {weight:.2f}, {100*eN:+.3f} %), friction/normal "
           f"{(F / N).mean():.10f} (tan alpha_b {math.tan(ab):.10f})")
     ok &= abs(ea) < 0.01 and abs(eN) < 0.005 and eF < 1e-6
-rows = list(csv.DictReader(open(f"{sys.argv[1]}/hold/diagnostics.csv")))
-peak = max(float(r["max_speed_granular"]) for r in rows)
-mean = max(math.hypot(float(r["granular_u"]), float(r["granular_v"])) for r in rows)
-air = max(float(r["max_speed"]) for r in rows)
+d = gr.read_csv(f"{sys.argv[1]}/hold/diagnostics.csv")
+peak = max(d["max_speed_granular"].tolist())
+mean = max(math.hypot(u, v) for u, v in zip(d["granular_u"].tolist(), d["granular_v"].tolist()))
+air = max(d["max_speed"].tolist())
 print(f"hold (theta = 10 deg < alpha_b = 15 deg): max granular speed {peak:.2e} m/s, max mean "
       f"granular speed {mean:.2e} m/s (air above: {air:.2f} m/s; free sliding: "
       f"{g * math.sin(math.radians(10)) * 0.2:.2f} m/s)")
-stuck = min(float(r["bottom_stick_m"]) for r in rows[1:])
+stuck = min(d["bottom_stick_m"].tolist()[1:])
 print(f"hold: stuck length of the bottom at least {stuck:.4f} m of 0.1 m")
 ok &= peak < 2e-3 and mean < 5e-4 and stuck > 0.1 - 1e-9
 print("PASS" if ok else "FAIL: acceleration off by more than 1 %, normal force by more than 0.5 %, "

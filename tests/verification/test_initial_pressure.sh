@@ -19,12 +19,13 @@ for mode in hydrostatic projection; do
     > "$tmp/log_$mode" 2>&1 || rc=$?
   if ((rc)); then cat "$tmp/log_$mode"; echo "FAIL: granflow run ($mode) exited with $rc"; exit 1; fi
 done
-/usr/bin/python3 - "$tmp" <<'PY'
-import csv, sys
+PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
+import sys
+import granflow_run as gr
 def p0(mode):
-    rows = list(csv.DictReader(open(f"{sys.argv[1]}/{mode}/diagnostics.csv")))
-    assert float(rows[0]["t"]) == 0.0
-    return float(rows[0]["max_p_granular"])
+    d = gr.read_csv(f"{sys.argv[1]}/{mode}/diagnostics.csv")
+    assert d["t"][0] == 0.0
+    return float(d["max_p_granular"][0])
 rho, g, H, h = 1550.0, 9.81, 0.14, 0.2 / 32
 exact = rho * g * (H - h / 2)
 ph, pp = p0("hydrostatic"), p0("projection")

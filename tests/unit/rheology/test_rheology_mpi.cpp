@@ -5,8 +5,10 @@
 #include <array>
 #include <cmath>
 
+#include "boundary/Coulomb.hpp"
 #include "fields/Fields.hpp"
 #include "levelset/Heaviside.hpp"
+#include "levelset/LevelSet.hpp"
 #include "rheology/Rheology.hpp"
 
 using namespace gf;
@@ -27,8 +29,8 @@ TEST(Rheology, ProjectionOntoUnitBall) {
   rheology::project(a2, b2);
   EXPECT_DOUBLE_EQ(a, a2);
   EXPECT_DOUBLE_EQ(b, b2);
-  EXPECT_DOUBLE_EQ(rheology::project_b(-3.0), -1.0);
-  EXPECT_DOUBLE_EQ(rheology::project_b(0.25), 0.25);
+  EXPECT_DOUBLE_EQ(boundary::project_b(-3.0), -1.0);
+  EXPECT_DOUBLE_EQ(boundary::project_b(0.25), 0.25);
 }
 
 TEST(Rheology, ModifiedFrobeniusNorm) {
@@ -115,9 +117,10 @@ TEST(Rheology, YieldSupportPhaseOrMass) {
   rheology::Params pr;
   pr.yield = rheology::Yield::DruckerPrager;
   pr.tan_alpha = 0.5;
+  Field w(g.dm_cell(), "support");
   for (const double support : {0.0, eps}) {
-    pr.support = support;
-    rheology::yield_stress(g, pr, phi, p, nullptr, k);
+    levelset::yield_support(g, phi, support, w);
+    rheology::yield_stress(g, pr, w, p, nullptr, k);
     const PetscScalar** ka;
     DMDAVecGetArrayRead(g.dm_cell(), k, &ka);
     double err = 0;
@@ -150,8 +153,9 @@ TEST(Rheology, BinghamMassSupportFollowsTheGranularFraction) {
     rheology::Params pr;
     pr.yield = rheology::Yield::Bingham;
     pr.tau_y = tau;
-    pr.support = eps;
-    rheology::yield_stress(g, pr, phi, p, nullptr, k);
+    Field w(g.dm_cell(), "support");
+    levelset::yield_support(g, phi, eps, w);
+    rheology::yield_stress(g, pr, w, p, nullptr, k);
     const PetscScalar** ka;
     DMDAVecGetArrayRead(g.dm_cell(), k, &ka);
     double err = 0, at_eps = 0;

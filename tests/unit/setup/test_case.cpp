@@ -1,4 +1,4 @@
-// Case files: the parameter registry and the cross-field checks (core/Params, core/Case).
+// Case files: the parameter registry and the cross-field checks (core/Params, setup/).
 // Each malformed case must fail with a message that names the file, the key, the value and
 // what is allowed; several problems must be reported at once; a resolved case must read back
 // to the same configuration.
@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "core/Case.hpp"
+#include "setup/Case.hpp"
+#include "setup/Report.hpp"
+#include "setup/Restart.hpp"
 #include "core/Error.hpp"
 
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 //     p = (b^2 cos(2a(x-x0)) + a^2 cos(2 b y)) F^2 / 4 (rho = 1), exact with free-slip
 //     bottom/top; u != 0 on the seam, so treating it as a wall would fail. Second order;
 //  3. a level-set disk carried once across the seam by u = 1 comes back to its start;
-//  4. the "vortex" initial velocity (sim/Setup.hpp), with walls and periodic: divergence free;
+//  4. the "vortex" initial velocity (setup/Build.hpp), with walls and periodic: divergence free;
 //  5. 1 vs 2 ranks: the same run on PETSC_COMM_WORLD and PETSC_COMM_SELF (64 x 16: PETSc splits
 //     x on 2 ranks), for the level set (bit for bit) and for a two-phase Bingham step sequence
 //     with Coulomb friction on the bottom (to solver tolerance).
@@ -20,13 +20,13 @@
 #include <functional>
 #include <numbers>
 
-#include "core/Case.hpp"
+#include "setup/Case.hpp"
 #include "diagnostics/Diagnostics.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
 #include "levelset/LevelSet.hpp"
 #include "levelset/PrescribedFlow.hpp"
-#include "sim/Setup.hpp"
+#include "setup/Build.hpp"
 #include "stepper/Stepper.hpp"
 
 using namespace gf;

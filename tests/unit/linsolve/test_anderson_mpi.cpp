@@ -1,4 +1,4 @@
-// Anderson acceleration (stepper/Anderson.hpp) against exact answers: on a linear contraction
+// Anderson acceleration (linsolve/Anderson.hpp) against exact answers: on a linear contraction
 // G(x) = M x + b with three distinct eigenvalues, Anderson mixing is GMRES in disguise (Walker &
 // Ni 2011) and must reach the exact fixed point x* = (I - M)^{-1} b in a handful of iterations
 // where the plain iteration needs thousands; the entries outside the active set (zero in x and
@@ -10,9 +10,10 @@
 #include <cmath>
 #include <vector>
 
-#include "stepper/Anderson.hpp"
+#include "linsolve/Anderson.hpp"
 
 using namespace gf;
+using gf::linsolve::Anderson;
 
 namespace {
 

@@ -1,11 +1,18 @@
 #pragma once
-// Ghosted read access to a global field, shared by the diagnostics and the output writers.
+// Ghosted read access to a global field: the one helper every layer uses to read values beyond
+// its owned range (the face u_{i+1} of the last owned column, a stencil's neighbours).
 //
-// Every measure here needs values one cell beyond the owned range (the face u_{i+1} of the
-// last owned column, the right-hand neighbour of a probe stencil), so each opens a local
-// (ghosted) copy, scatters the owned values of the neighbours into it and reads the array
-// with global [j][i] indices. The local vector comes from the DM's pool (DMGetLocalVector),
-// so repeated calls do not allocate.
+// LocalArray<T> opens a local (ghosted) copy of a global Vec from the DM's pool
+// (DMGetLocalVector: no allocation after the first use, so it can be used in every fixed-point
+// iteration), scatters the owned values of the neighbours into it (to_local, the ghost exchange
+// of grid/Grid.hpp) and exposes the array with global [j][i] indices over the owned range widened
+// by the DM's stencil width:
+//   T = PetscScalar  a scalar field (dm_cell):           a[j][i]
+//   T = Vel          the velocity (dm_vel):              a[j][i].u, a[j][i].v
+//   T = PetscScalar* a field with dof > 1 (dm_ten, dm_node): a[j][i][c]
+// Ghosts outside the domain (DM_BOUNDARY_GHOSTED) are NOT filled: callers either stay inside the
+// domain or, for the velocity, use LocalVelocity below. Objects that keep a local Vec of their
+// own between calls (solver work vectors) call to_local directly.
 #include <petscdmda.h>
 
 #include <type_traits>
@@ -13,23 +20,21 @@
 #include "core/Error.hpp"
 #include "grid/Grid.hpp"
 
-namespace gf::diag {
+namespace gf {
 
 static_assert(std::is_same_v<PetscScalar, double>, "granflow assumes real double PETSc");
 
-// A local copy of `global` (a Vec of `dm`) with its array open, indexed a[j][i] with global
-// indices over the owned range widened by the DM's stencil width. Ghosts outside the domain
-// (DM_BOUNDARY_GHOSTED) are NOT filled: callers either stay inside the domain or, for the
-// velocity, use LocalVelocity below.
 template <class T>
 class LocalArray {
  public:
   LocalArray(DM dm, Vec global) : dm_(dm) {
     GF_PETSC(DMGetLocalVector(dm_, &local_));
     try {
-      GF_PETSC(DMGlobalToLocalBegin(dm_, global, INSERT_VALUES, local_));
-      GF_PETSC(DMGlobalToLocalEnd(dm_, global, INSERT_VALUES, local_));
-      GF_PETSC(DMDAVecGetArray(dm_, local_, &a_));
+      to_local(dm_, global, local_);
+      if constexpr (std::is_pointer_v<T>)
+        GF_PETSC(DMDAVecGetArrayDOF(dm_, local_, &a_));
+      else
+        GF_PETSC(DMDAVecGetArray(dm_, local_, &a_));
     } catch (...) {
       DMRestoreLocalVector(dm_, &local_);
       throw;
@@ -37,7 +42,10 @@ class LocalArray {
   }
   ~LocalArray() {
     // No throwing from a destructor: a failure to restore cannot be acted on here.
-    DMDAVecRestoreArray(dm_, local_, &a_);
+    if constexpr (std::is_pointer_v<T>)
+      DMDAVecRestoreArrayDOF(dm_, local_, &a_);
+    else
+      DMDAVecRestoreArray(dm_, local_, &a_);
     DMRestoreLocalVector(dm_, &local_);
   }
   LocalArray(const LocalArray&) = delete;
@@ -45,6 +53,8 @@ class LocalArray {
 
   const T* operator[](PetscInt j) const { return a_[j]; }
   T** data() { return a_; }
+  // The array as the read-only argument of a kernel (const T* const*).
+  const T* const* array() const { return a_; }
 
  private:
   DM dm_;
@@ -53,6 +63,7 @@ class LocalArray {
 };
 
 using LocalCells = LocalArray<PetscScalar>;
+using LocalDof = LocalArray<PetscScalar*>;
 
 // The ghosted velocity with the wall faces set by fill_velocity_ghosts(): u on faces i = 0 and
 // i = nx, v on faces j = 0 and j = ny are zero (eq. 20), so a cell's right/top face can be
@@ -73,4 +84,4 @@ inline void cell_centre_velocity(const LocalVelocity& v, PetscInt i, PetscInt j,
   vc = 0.5 * (v[j][i].v + v[j + 1][i].v);
 }
 
-}  // namespace gf::diag
+}  // namespace gf

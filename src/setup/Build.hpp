@@ -1,16 +1,23 @@
 #pragma once
-// From a validated case (core/Case.hpp) to the objects of a run: the physics of the stepper,
-// the schedule of the simulation, the initial level set. The only place that maps case keys
-// onto solver structures.
-#include "core/Case.hpp"
+// From a validated case (setup/Case.hpp) to the objects of a run: the model's time stepper
+// (the two-phase flow, or a prescribed flow of the level-set benchmarks), the schedule of the
+// simulation, the initial level set and velocity. The only place that maps case keys onto
+// solver structures.
+#include <memory>
+#include <string>
+
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
+#include "setup/Case.hpp"
 #include "sim/Simulation.hpp"
 #include "stepper/Stepper.hpp"
+#include "stepper/TimeStepper.hpp"
 
 namespace gf {
 
 PhysicsConfig physics_from_case(const CaseConfig& c);
+// The model of the case: Stepper (physics_from_case), or KinematicStepper for flow.prescribed.
+std::unique_ptr<TimeStepper> make_stepper(const Grid& g, const CaseConfig& c);
 RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir);
 // phi at t = 0 from initial.shape (a signed distance; phi = -1 m everywhere for a one-phase run).
 void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi);

@@ -1,4 +1,4 @@
-#include "sim/Setup.hpp"
+#include "setup/Build.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,25 @@
 
 #include "core/Error.hpp"
 #include "levelset/PrescribedFlow.hpp"
+#include "setup/Kinematic.hpp"
+#include "setup/Report.hpp"
 
 namespace gf {
+
+namespace {
+levelset::RedistanceConfig redistance_from_case(const CaseConfig& c) {
+  levelset::RedistanceConfig r;
+  r.every = c.levelset.redistance_every;
+  r.iters = c.levelset.redistance_iters;
+  r.cfl = c.levelset.redistance_cfl;
+  r.tol = c.levelset.redistance_tol;
+  r.interval = c.levelset.redistance_interval;
+  r.wall_extrapolate = c.levelset.redistance_wall_extrapolate;
+  return r;
+}
+// m, the half-width of the smeared Heaviside of eq. 25.
+double eps_of(const CaseConfig& c) { return c.levelset.eps_cells * std::max(c.hx, c.hy); }
+}  // namespace
 
 PhysicsConfig physics_from_case(const CaseConfig& c) {
   PhysicsConfig p;
@@ -17,16 +34,11 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.eta_air = c.air.eta;
   p.gravity = c.gravity;
   p.levelset = c.levelset.enabled;
-  p.eps = c.levelset.eps_cells * std::max(c.hx, c.hy);
-  p.redistance_every = c.levelset.redistance_every;
-  p.redistance_iters = c.levelset.redistance_iters;
-  p.redistance_cfl = c.levelset.redistance_cfl;
-  p.redistance_tol = c.levelset.redistance_tol;
-  p.redistance_interval = c.levelset.redistance_interval;
-  p.redistance_wall_extrapolate = c.levelset.redistance_wall_extrapolate;
+  p.eps = eps_of(c);
+  p.redistance = redistance_from_case(c);
   auto wall = [&](CaseConfig::Side s) {
     const auto& w = c.walls[s];
-    return WallBC{static_cast<WallType>(w.type), w.eta_b, w.velocity};
+    return WallBC{w.type, w.eta_b, w.velocity};
   };
   p.bc.left = wall(CaseConfig::kLeft);
   p.bc.right = wall(CaseConfig::kRight);
@@ -34,24 +46,12 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.bc.top = wall(CaseConfig::kTop);
   p.pressure_rtol = c.solver.pressure_rtol;
   p.viscous_rtol = c.solver.viscous_rtol;
-  p.viscous_local_margin = c.solver.viscous_local_margin;
   p.initial_pressure_hydrostatic = c.initial.pressure_hydrostatic;
-  switch (c.flow.prescribed) {
-    case CaseConfig::Prescribed::None: p.prescribed = PrescribedFlow::None; break;
-    case CaseConfig::Prescribed::Rotation: p.prescribed = PrescribedFlow::Rotation; break;
-    case CaseConfig::Prescribed::SingleVortex: p.prescribed = PrescribedFlow::SingleVortex; break;
-  }
   const auto& rh = c.rheology;
-  switch (rh.yield) {
-    case CaseConfig::Yield::None: p.rheo.yield = rheology::Yield::None; break;
-    case CaseConfig::Yield::Bingham: p.rheo.yield = rheology::Yield::Bingham; break;
-    case CaseConfig::Yield::DruckerPrager: p.rheo.yield = rheology::Yield::DruckerPrager; break;
-    case CaseConfig::Yield::Hydrostatic: p.rheo.yield = rheology::Yield::Hydrostatic; break;
-  }
+  p.rheo.yield = rh.yield;
   p.rheo.tau_y = rh.tau_y;
   p.rheo.tan_alpha = rh.tan_alpha();
-  p.rheo.viscosity = rh.viscosity == CaseConfig::Viscosity::MuI ? rheology::Viscosity::MuI
-                                                                 : rheology::Viscosity::Constant;
+  p.rheo.viscosity = rh.viscosity;
   p.rheo.mu_inf = rh.mu_inf;
   p.rheo.I0 = rh.I0;
   p.rheo.d = rh.d;
@@ -60,17 +60,35 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.rheo.r_factor = rh.r_factor;
   p.rheo.theta_per_dt = rh.theta_per_dt;
   p.rheo.node_copy = rh.node_copy;
-  p.rheo.support = rh.yield_on_mass && c.levelset.enabled ? p.eps : 0.0;
   p.rheo.fp_tol = rh.fp_tol;
   p.rheo.fp_tol_u = rh.fp_tol_u;
   p.rheo.fp_max_iter = rh.fp_max_iter;
+  p.fp.anderson_depth = rh.anderson_depth;
+  p.fp.anderson_reset_ratio = rh.anderson_reset_ratio;
+  p.fp.monitor = rh.fp_monitor;
+  p.fp.local_margin = c.solver.viscous_local_margin;
+  p.yield_support = rh.yield_on_mass && c.levelset.enabled ? p.eps : 0.0;
   for (int sd = 0; sd < 4; ++sd)
     p.wall_tan_b[sd] = c.walls[sd].friction_angle_deg > 0 ? c.walls[sd].tan_friction() : 0.0;
-  p.omega = c.flow.omega;
-  p.cx = c.flow.cx;
-  p.cy = c.flow.cy;
-  p.period = c.flow.period;
   return p;
+}
+
+std::unique_ptr<TimeStepper> make_stepper(const Grid& g, const CaseConfig& c) {
+  if (c.flow.prescribed == PrescribedFlow::None)
+    return std::make_unique<Stepper>(g, physics_from_case(c));
+  KinematicConfig k;
+  k.flow = c.flow.prescribed;
+  k.omega = c.flow.omega;
+  k.cx = c.flow.cx;
+  k.cy = c.flow.cy;
+  k.period = c.flow.period;
+  k.redistance = redistance_from_case(c);
+  k.eps = eps_of(c);
+  k.rho_air = c.air.rho;
+  k.rho_gran = c.granular.rho;
+  k.eta_air = c.air.eta;
+  k.eta_gran = c.granular.eta;
+  return std::make_unique<KinematicStepper>(g, k);
 }
 
 RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
@@ -107,7 +125,7 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
                c.collapse.rest_speed};
   co.rho_s = c.granular.rho;
   co.gravity = std::hypot(c.gravity[0], c.gravity[1]);
-  co.eps = c.levelset.enabled ? c.levelset.eps_cells * std::max(c.hx, c.hy) : 0.0;  // as eq. 25
+  co.eps = c.levelset.enabled ? eps_of(c) : 0.0;  // as eq. 25
   r.out_dir = out_dir;
   r.title = c.title;
   return r;

@@ -18,7 +18,7 @@
 
 #include <vector>
 
-namespace gf {
+namespace gf::linsolve {
 
 class Anderson {
  public:
@@ -32,8 +32,6 @@ class Anderson {
   // x: the current iterate x_k (overwritten with x_{k+1}); g: G(x_k). Blocks in the order of
   // set_active.
   void update(const std::vector<Vec>& x, const std::vector<Vec>& g);
-  int depth() const { return m_; }
-  size_t active_size() const { return n_; }
 
  private:
   int m_;
@@ -52,4 +50,4 @@ class Anderson {
   std::vector<double> gram_;
 };
 
-}  // namespace gf
+}  // namespace gf::linsolve

@@ -1,4 +1,4 @@
-#include "stepper/Anderson.hpp"
+#include "linsolve/Anderson.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "core/Error.hpp"
 
-namespace gf {
+namespace gf::linsolve {
 
 Anderson::Anderson(int m, MPI_Comm comm) : m_(m), comm_(comm) {
   if (m_ > 0) gram_.assign(static_cast<size_t>(m_) * m_, 0.0);
@@ -125,4 +125,4 @@ void Anderson::update(const std::vector<Vec>& x, const std::vector<Vec>& g) {
   }
 }
 
-}  // namespace gf
+}  // namespace gf::linsolve

@@ -1,10 +1,11 @@
 #pragma once
 // A case: every input of a run, read once from a TOML case file plus `--set` overrides,
-// validated (per key by the registry, across keys here), and stored in plain typed members
-// so that no solver ever looks a parameter up by name.
+// validated (per key by the registry, across keys in setup/Checks.cpp), and stored in plain
+// typed members, in the physics layers' own types, so that no solver ever looks a parameter up
+// by name.
 //
 // The keys, units, defaults, ranges and help texts are declared in one place, case_params()
-// in Case.cpp; `granflow check --list` prints them (print_case_help).
+// in setup/Schema.cpp; `granflow check --list` prints them (print_case_help).
 #include <array>
 #include <cmath>
 #include <iosfwd>
@@ -12,29 +13,29 @@
 #include <string>
 #include <vector>
 
+#include "boundary/Boundary.hpp"
 #include "core/Params.hpp"
+#include "rheology/Rheology.hpp"
+#include "setup/Kinematic.hpp"
 
 namespace gf {
 
 struct CaseConfig {
   enum class DtMode { Adaptive, Fixed };
   enum class Shape { None, Rectangle, Layer, Circle, Zalesak, Trapezoid };
-  enum class Prescribed { None, Rotation, SingleVortex };
+  using Prescribed = PrescribedFlow;  // setup/Kinematic.hpp
   // Initial velocity field (initial.velocity): none = rest; vortex = a divergence-free cell
-  // from a stream function (sim/Setup.hpp), amplitude initial.velocity_amplitude.
+  // from a stream function (setup/Build.hpp), amplitude initial.velocity_amplitude.
   enum class InitialVelocity { None, Vortex };
-  // Same enumerators, same order as gf::WallType in boundary/Boundary.hpp (core/ may not
-  // include a lower layer), so static_cast<WallType>(wall.type) is the conversion.
-  enum class Wall { FreeSlip, NoSlip, Navier };
+  using Wall = WallType;  // boundary/Boundary.hpp
   // Probe fields; DNorm, SNorm, Kappa are the cell-centred plastic fields |D(u)| (1/s), |S|
   // and the yield stress kappa (Pa), the same as the VTK output (appended: order kept).
   enum class ProbeField { Phi, Rho, U, V, Speed, P, Eta, DNorm, SNorm, Kappa };
-  // Same enumerators, same order as gf::rheology::Yield / Viscosity in rheology/Rheology.hpp.
   // None: Newtonian granular phase; Bingham: kappa = tau_y; DruckerPrager ("dp"): kappa =
   // tan(alpha) p^+ (eq. 19); Hydrostatic ("hp"): kappa = tan(alpha) p_hyd (eq. 15).
-  enum class Yield { None, Bingham, DruckerPrager, Hydrostatic };
+  using Yield = rheology::Yield;
   // Constant: eta_s = phase.granular.eta; MuI: the mu(I) viscosity of eq. 11.
-  enum class Viscosity { Constant, MuI };
+  using Viscosity = rheology::Viscosity;
   enum Side { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
 
   struct Domain {
@@ -118,6 +119,9 @@ struct CaseConfig {
     double fp_tol_u = 0;      // m/s, on the max change of u~ in one iteration (0: off)
     int fp_max_iter = 0;
     double fp_fail_change = 1.0;  // -, a capped step ending above this change is a failure
+    int anderson_depth = 0;       // -, Anderson acceleration of the fixed point (0 = Picard)
+    double anderson_reset_ratio = 0;  // -, the history is dropped when the change grows more
+    bool fp_monitor = false;      // a log line per fixed-point iteration
     // mu_s = tan(alpha).
     double tan_alpha() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
     bool operator==(const Rheology&) const = default;
@@ -197,35 +201,8 @@ Params case_params();
 // The `granflow check --list` listing.
 void print_case_help(std::ostream& os);
 
-// The report of `granflow check`: grid, h, first dt, dimensionless numbers, estimated steps
-// and run time on `nranks` ranks.
-std::string describe_case(const CaseConfig& c, int nranks);
-// Cost model of describe_case: wall seconds per cell per time step on one core. An estimate
-// (measured orders of magnitude, not a promise): Newtonian phases (one viscous and one pressure
-// solve per step), and a viscoplastic phase or Coulomb walls, whose fixed point of eq. 31 costs
-// 20-30 viscous solves per step (case A at n = 64: ~85 s for 1061 steps, docs/PERFORMANCE.md).
-inline constexpr double kSecondsPerCellStep = 1.5e-6;
-inline constexpr double kSecondsPerCellStepPlastic = 5e-6;
-
-// The velocity scale U of the case, m/s: |omega| R or the vortex peak for a prescribed flow;
-// otherwise the largest of sqrt(|g| H) (H = top of the initial granular region, two-phase
-// runs) and the wall speeds. 0 if nothing drives the flow.
-double velocity_scale(const CaseConfig& c);
-// The first time step, s: time.dt if > 0, else min(cfl min(hx, hy) / U, dt_max) (dt_max if
-// U = 0).
-double initial_dt(const CaseConfig& c);
-
-// Restarts (`granflow run --restart DIR`). The keys a restart may change, by --set or by
-// editing DIR/case.toml: the end time and the time-step controls (extend a run, retry a
-// blown-up run with a smaller step), the checkpoint and progress schedule, the warning
-// thresholds and the PETSc options. Every other key changes the physics, the grid or the
-// output schedule that the files already written follow: a restart refuses it.
-const std::vector<std::string>& restart_changeable_keys();
-// The differences between two resolved cases (CaseConfig::resolved_toml), one line each
-// ("grid.n: 16 at the checkpoint, 24 now"), skipping the keys in `ignore`. Empty: same case.
-std::vector<std::string> case_differences(const std::string& checkpoint_toml,
-                                          const std::string& now_toml,
-                                          const std::vector<std::string>& ignore);
+// The top of the initial granular region, m (Ly for a one-phase run, 0 if there is none).
+double granular_top(const CaseConfig& c);
 
 // Writes c.resolved_toml to `path`. Returns an error message, empty on success.
 [[nodiscard]] std::string write_resolved_case(const CaseConfig& c, const std::string& path);
