@@ -104,7 +104,8 @@ void CollapseMonitor::save(CheckpointHeader& h) const {
 
 CollapseMonitor::~CollapseMonitor() = default;
 
-CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec p) {
+CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec p,
+                                                 double t_written) {
   Sample s;
   const std::vector<double> h = surface_heights(g_, phi);
   s.front_x = front_position(g_, phi);
@@ -128,16 +129,24 @@ CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec 
   front_.push_back(s.front_x);
   umax_.push_back(s.max_speed_granular);
   h_last_ = h;
+  // The history keeps the step time (the stage fits use it); the files the time written.
+  const double tw = std::isnan(t_written) ? t : t_written;
+  std::string err;  // rank 0 writes; its failure is raised on every rank
   if (profiles_ && g_.rank() == 0) {
-    const double a_min = 1e-6 * g_.hx() * g_.hy();
-    for (std::size_t i = 0; i < h.size(); ++i) profiles_->row({t, x_[i], h[i]});
-    for (const auto& d : deps) {
-      for (std::size_t i = 0; i < h.size(); ++i)
-        structure_->row({t, d.cutoff, x_[i], h[i], d.h_deposit[i], h[i] - d.h_deposit[i]});
-      deposit_->row({t, d.cutoff, s.max_speed_granular, u_ref_, s.front_x, d.x_deposit, d.L,
-                     d.L_d, d.L_h, d.A, d.A_d, d.A >= a_min ? d.A_d / d.A : kNaN});
+    try {
+      const double a_min = 1e-6 * g_.hx() * g_.hy();
+      for (std::size_t i = 0; i < h.size(); ++i) profiles_->row({tw, x_[i], h[i]});
+      for (const auto& d : deps) {
+        for (std::size_t i = 0; i < h.size(); ++i)
+          structure_->row({tw, d.cutoff, x_[i], h[i], d.h_deposit[i], h[i] - d.h_deposit[i]});
+        deposit_->row({tw, d.cutoff, s.max_speed_granular, u_ref_, s.front_x, d.x_deposit, d.L,
+                       d.L_d, d.L_h, d.A, d.A_d, d.A >= a_min ? d.A_d / d.A : kNaN});
+      }
+    } catch (const IoError& e) {
+      err = e.what();
     }
   }
+  if (profiles_) raise_on_all_ranks(g_.comm(), err);
   return s;
 }
 
