@@ -6,7 +6,8 @@
  * a SIGTERM in that window would kill it with exit 143 and nothing said. A blocked signal
  * stays pending across execv, so it reaches granflow-core's handler as soon as main() has
  * installed it and unblocked the signals: the run then stops cleanly (exit 6, with a message).
- * This launcher links only the C library, so its own start is a millisecond.
+ * This launcher links only the C library, statically: it blocks the signals microseconds after
+ * its execve.
  * The arguments are passed on unchanged (argv[0] too: the provenance shows the command typed). */
 #include <errno.h>
 #include <limits.h>

@@ -813,8 +813,11 @@ struct ParamsLoader {
     // A number beyond the range of a double (1e999) is not valid TOML either; it must not then
     // be read as a string ("got a string"): say what is wrong with it.
     if (!parsed && !wants_string && looks_like_number(text)) {
-      late.add("--set: " + key + " = " + text + ": out of range: not representable as a "
-               "double (magnitude above 1.8e308 or a non-zero value below 4.9e-324)");
+      late.add("--set: " + key + " = " + text + ": out of range: " +
+               (spec->type == ParamType::Integer
+                    ? std::string("beyond the 64-bit integers (+-9.2e18)")
+                    : std::string("not representable as a double (magnitude above 1.8e308 or "
+                                  "a non-zero value below 4.9e-324)")));
       return;
     }
     if (!parsed || (wants_string && !t->get("v")->is_string())) {

@@ -241,8 +241,10 @@ std::vector<std::string> resource_problems(const CaseConfig& c, int nranks,
                     " cells): use at most " + std::to_string(cells_side / ghost) +
                     " parts there (fewer ranks, -da_processors_" + key + "), or a larger grid");
   };
-  thin(c.nx, m, "nx", "x");
-  thin(c.ny, n, "ny", "y");
+  if (m * n == nranks) {  // otherwise the grid says that the processor grid does not fit
+    thin(c.nx, m, "nx", "x");
+    thin(c.ny, n, "ny", "y");
+  }
   const double need = memory_estimate_bytes(c, nranks);
   if (available_bytes > 0 && need > available_bytes)
     out.push_back(grid + " on " + std::to_string(nranks) + " rank(s) needs about " + gib(need) +

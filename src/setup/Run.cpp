@@ -173,8 +173,13 @@ double machines_memory() {
 std::array<int, 2> processor_grid_options() {
   PetscInt px = 0, py = 0;
   PetscBool fx = PETSC_FALSE, fy = PETSC_FALSE;
-  PetscOptionsGetInt(nullptr, nullptr, "-da_processors_x", &px, &fx);
-  PetscOptionsGetInt(nullptr, nullptr, "-da_processors_y", &py, &fy);
+  try {
+    GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-da_processors_x", &px, &fx));
+    GF_PETSC(PetscOptionsGetInt(nullptr, nullptr, "-da_processors_y", &py, &fy));
+  } catch (const PetscFailure& e) {
+    throw InputError("a PETSc option was refused (the options given: " + petsc_options_text() +
+                     "): " + e.what());
+  }
   return {fx ? static_cast<int>(px) : 0, fy ? static_cast<int>(py) : 0};
 }
 
