@@ -185,13 +185,14 @@ class Sweep:
         else:
             cmd = [self.a.granflow, "run", self.a.case] + self.set_args(sets) + \
                   ["--out", folder, "--overwrite"]
-            with open(spec_path, "w") as f:
-                json.dump(spec_of(self.case_text, sets, self.petsc), f, indent=1)
         if self.petsc:
             cmd += ["--"] + self.petsc
         with self.lock:
             if self.stopping:
                 return name, "not started (interrupted)"
+            if what == "run":  # what this run is: a later sweep skips it once completed
+                with open(spec_path, "w") as f:
+                    json.dump(spec_of(self.case_text, sets, self.petsc), f, indent=1)
             log = open(log_path, "a")
             log.write("$ " + " ".join(cmd) + "\n")
             log.flush()
@@ -229,7 +230,7 @@ class Sweep:
             rows.append(row)
         tmp = path + ".tmp"
         with open(tmp, "w", newline="") as f:
-            w = csv.writer(f)
+            w = csv.writer(f, lineterminator="\n")
             w.writerow(header)
             w.writerows(rows)
         os.replace(tmp, path)
