@@ -62,6 +62,7 @@ class CollapseMonitor {
   CollapseConfig cfg_;
   std::vector<double> x_;  // column centres, m
   std::vector<double> t_, front_, umax_;
+  std::vector<double> tw_;  // the times written for t_ (the output schedule's)
   std::vector<double> h_last_;
   double gate_ = 0, Hc_ = 0, max_p_ = 0;
   double u_ref_ = 0;  // m/s, the largest max_speed_granular so far: the cut-offs' reference
