@@ -456,7 +456,7 @@ void Simulation::equilibrate() {
                 std::string("stopped by ") + signal::name(sig) +
                 " during the initial stress equilibrium (initial.stress = \"equilibrium\", "
                 "pseudo-step " + std::to_string(k) + "): no checkpoint (the equilibrium was not "
-                "reached, there is no state to continue from); run the case again to start";
+                "reached, there is no state to continue from); run the case again with --overwrite";
             write_summary("interrupted", msg);
             throw Interrupted(msg);
           }
