@@ -9,6 +9,6 @@ out="${1:-$root/out/answer_check_a64}"
 shift || true
 "$root/scripts/build.sh" > /dev/null
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
-"$root/build/granflow" run "$root/cases/ar07_rough.toml" --out "$out" --set grid.n=64 \
+"$root/build/granflow" run "$root/cases/ar07_rough.toml" --out "$out" --overwrite --set grid.n=64 \
   --set output.vtk_interval=0 "$@" > "$out.log" 2>&1 || { tail -5 "$out.log"; exit 1; }
 exec /usr/bin/python3 "$root/bench/answer_check.py" "$out"

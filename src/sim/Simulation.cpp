@@ -300,7 +300,7 @@ void Simulation::write_diagnostics() {
   const auto &stick = wc.stick_m, &slide = wc.slide_m;
   const StepStats& last = lp_.last;
   // The time written: the scheduled one when the step landed on it within round-off.
-  const double t_out = output_time();
+  const double t_out = output_time(rc_.output_interval);
   const auto col = out_->collapse.sample(s_.t, s_.phi, s_.vel, s_.p, t_out);
   const double speed = diag::max_speed(g_, s_.vel);
   const double ke = diag::kinetic_energy(g_, s_.vel, s_.rho);
@@ -345,7 +345,9 @@ void Simulation::write_vtk() {
   Output& o = *out_;
   io::cell_velocity(g_, s_.vel, o.ucell, nullptr, o.speed);
   stepper_.derived_fields(s_, o.dnorm, o.snorm, o.yielded);
-  o.vtk->write(s_.t, {{"phi", s_.phi, 1}, {"rho", s_.rho, 1}, {"u", o.ucell, 2},
+  // The scheduled time in fields.pvd and TimeValue (0.1, not 0.10000000000000007).
+  const double t_out = output_time(rc_.vtk_interval);
+  o.vtk->write(t_out, {{"phi", s_.phi, 1}, {"rho", s_.rho, 1}, {"u", o.ucell, 2},
                       {"speed", o.speed, 1}, {"p", s_.p, 1}, {"eta", s_.eta, 1},
                       {"D_norm", o.dnorm, 1}, {"S_norm", o.snorm, 1}, {"yielded", o.yielded, 1},
                       {"kappa", stepper_.kappa(), 1}});
@@ -550,14 +552,14 @@ double Simulation::advance(double dt) {
 
 double Simulation::tiny() const { return 1e-12 * std::max(1.0, rc_.t_end); }
 
-double Simulation::output_time() const {
+double Simulation::output_time(double interval) const {
   // Only the printed value: the step times (and so the physics) are the loop's own.
   const double t = s_.t, eps = tiny();
   if (std::abs(t - rc_.t_end) <= eps) return rc_.t_end;
-  if (!(rc_.output_interval > 0)) return t;
-  const double k = std::round(t / rc_.output_interval);
+  if (!(interval > 0)) return t;
+  const double k = std::round(t / interval);
   if (!(k >= 0 && k < 9e18)) return t;
-  const double on = decimal_multiple(static_cast<long long>(k), rc_.output_interval);
+  const double on = decimal_multiple(static_cast<long long>(k), interval);
   return std::abs(t - on) <= eps ? on : t;
 }
 

@@ -160,7 +160,9 @@ class Simulation {
 
   // The stages of run().
   double tiny() const;          // s: the time loop's tolerance, 1e-12 max(1, t_end)
-  double output_time() const;   // s: the time written for the current state
+  // s: the time written for the current state: the scheduled one (a multiple of interval, or
+  // t_end) when the step landed on it within round-off, else the step time.
+  double output_time(double interval) const;
   void stop_if_signalled(bool diag_written);  // collective: a checkpoint, then Interrupted
   void run_loop();                   // run() without its files' opening and closing
   void open_outputs();
