@@ -46,7 +46,7 @@ out = [
     "",
     "Command: `scripts/bagnold_study.sh` (runs `granflow run cases/verify/bagnold.toml --set grid.n=N`",
     "for N = %s to t = 400 s, 1 rank). Errors of u at the N cell-centre heights against" % ", ".join(map(str, ns)),
-    "(b1) of `../shared/reference/analytical_solutions.md` (u_surface = %.6f); mean, RMS and max" % (2 / 3 * U0),
+    "(b1) of `docs/EXACT_SOLUTIONS.md` (u_surface = %.6f); mean, RMS and max" % (2 / 3 * U0),
     "(Gerris's `OutputErrorNorm` first, second and infinity norms); the peer's norms from",
     "`tests/data/bagnold_gerris_test.csv`.",
     "",

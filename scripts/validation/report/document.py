@@ -73,7 +73,7 @@ def intro(ctx):
           "`a_n128`), and this document and its figures by", "", f"    {GEN_CMD}", "",
           f"from whatever runs exist in `runs/validation/` ({datetime.date.today().isoformat()}; "
           f"granflow version(s) of the runs: {', '.join(versions) or 'none'}). The reference "
-          "numbers are those of `../shared/reference/paper_targets.md` (the paper's text; its "
+          "numbers are those of the paper's text (Chupin, Dubois, Phan, Roche 2021; its "
           "figures are not available as data). Cells read *value (±x % p, ±y % e)*: the relative "
           "difference to the paper's simulation (p) and to the experiment (e). *Runout* is the "
           "front (furthest x where the granular phase touches the bottom) at the end of the run; "
