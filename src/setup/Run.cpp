@@ -131,6 +131,7 @@ int run_or_check(const CommandLine& a) {
   Grid grid(PETSC_COMM_WORLD, c.nx, c.ny, c.domain.Lx, c.domain.Ly, c.periodic_x);
   State state(grid);
   initial_levelset(grid, c, state.phi);
+  initial_fraction(grid, c, state.frac);
   initial_velocity(grid, c, state.vel, state.vel_old);
   const auto stepper = make_stepper(grid, c);
   Simulation sim(grid, state, *stepper, run_from_case(c, out));
