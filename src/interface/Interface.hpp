@@ -51,6 +51,11 @@ class Interface {
   bool conservative() const { return cfg_.method == Method::Clsvof; }
   const Config& config() const { return cfg_; }
 
+  // At t = 0, from the initial phi and c: clsvof rebuilds phi as the distance to c's PLIC
+  // interface (the normals of the initial phi), so that phi is c's from the start; the level
+  // set keeps its phi. Collective.
+  void initialize(State& s) const;
+
   // Step 1 of section 3.3: the interface from t^n to t^n + dt with the solenoidal face velocity
   // vel (u^n in the paper's scheme); s.t and s.step are those of t^n. Returns whether phi was
   // redistanced (level_set). Collective.

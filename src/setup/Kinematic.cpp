@@ -44,6 +44,7 @@ void KinematicStepper::prescribe_velocity(State& s, double t) const {
 void KinematicStepper::initialize(State& s) {
   // The properties of the initial phi, for the diagnostics (kinetic energy, VTK); a kinematic
   // run does not update them.
+  interface_.initialize(s);
   interface_.properties(s, s.rho, s.eta, nullptr);
   prescribe_velocity(s, s.t);
 }

@@ -175,6 +175,9 @@ void Stepper::update_derived(State& s, bool props_change) {
   if (props_change) {
     update_properties(s);
     predictor_->walls().set_phase(phase(s));
+    // A sharp density: the wall load includes the wall cells' own lower half (Coulomb.hpp).
+    if (consistent() && predictor_->walls().active())
+      predictor_->walls().set_wall_weight(s.rho, cfg_.gravity);
   }
   if (fixed_point_) update_yield(s);
 }
@@ -265,6 +268,7 @@ void Stepper::update_yield(State& s) {
 // --------------------------------------------------------------- start, restart, outputs
 
 void Stepper::initialize(State& s) {
+  if (interface_) interface_->initialize(s);
   predictor_->walls().set_phase(phase(s));
   update_properties(s);
   // Initial pressure of the fluid at rest: project the field u* = g (one unit of time, a0 = 1)

@@ -249,48 +249,85 @@ void rebuild_distance(const Grid& g, Vec c, Vec phi, Normals src) {
   }
   {
     const LocalCells A(dm, m1), B(dm, m2), C(dm, al), lc(dm, c);
+    // 2. The segments of every cell of the ghosted range [xs - kBand, xe + kBand) x
+    //    [ys - kBand, ye + kBand) (within the domain, or its periodic images in x): its PLIC
+    //    segment, and its right and top faces where they separate a full cell from an empty one
+    //    (a column aligned with the grid has no cut cell at all; walls are not interfaces).
+    struct Segs {
+      int n = 0;
+      double x[3][4];
+    };
+    const PetscInt K = kBand, W = b.xm + 2 * K, H = b.ym + 2 * K;
+    std::vector<Segs> segs(static_cast<std::size_t>(W * H));
+    std::vector<char> mark(segs.size(), 0), near(segs.size(), 0), rowm(segs.size(), 0);
+    auto at = [&](PetscInt i, PetscInt j) { return (j - b.ys + K) * W + (i - b.xs + K); };
+    auto in_domain = [&](PetscInt i, PetscInt j) { return j >= 0 && j < b.ny && b.has_cell_x(i); };
+    const PetscInt i0 = b.xs - K, i1 = b.xe() + K, j0 = b.ys - K, j1 = b.ye() + K;
+    for (PetscInt jj = j0; jj < j1; ++jj)
+      for (PetscInt ii = i0; ii < i1; ++ii) {
+        if (!in_domain(ii, jj)) continue;
+        Segs& sg = segs[at(ii, jj)];
+        const double x0 = b.xf(ii), y0 = b.yf(jj);
+        if (!std::isnan(C[jj][ii])) {
+          const Line l{A[jj][ii], B[jj][ii], C[jj][ii]};
+          double xa, ya, xb, yb;
+          if (line_segment(l, xa, ya, xb, yb)) {
+            double* q = sg.x[sg.n++];
+            q[0] = x0 + xa * b.hx, q[1] = y0 + ya * b.hy, q[2] = x0 + xb * b.hx,
+            q[3] = y0 + yb * b.hy;
+          }
+        }
+        const double cv = lc[jj][ii];
+        const bool full = cv >= 1 - kCut, empty = cv <= kCut;
+        if (full || empty) {
+          auto opposite = [&](double cn) { return (full && cn <= kCut) || (empty && cn >= 1 - kCut); };
+          if (ii + 1 < i1 && in_domain(ii + 1, jj) && opposite(lc[jj][ii + 1])) {
+            double* q = sg.x[sg.n++];
+            q[0] = x0 + b.hx, q[1] = y0, q[2] = x0 + b.hx, q[3] = y0 + b.hy;
+          }
+          if (jj + 1 < j1 && in_domain(ii, jj + 1) && opposite(lc[jj + 1][ii])) {
+            double* q = sg.x[sg.n++];
+            q[0] = x0, q[1] = y0 + b.hy, q[2] = x0 + b.hx, q[3] = y0 + b.hy;
+          }
+        }
+        mark[at(ii, jj)] = sg.n > 0;
+      }
+    // 3. Which owned cells have a segment within kBand cells: a separable dilation of the marks
+    //    (rows, then columns), so that the cells far from the interface skip the search.
+    for (PetscInt jj = j0; jj < j1; ++jj)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        char m = 0;
+        for (PetscInt ii = i - K; ii <= i + K && !m; ++ii) m = mark[at(ii, jj)];
+        rowm[at(i, jj)] = m;
+      }
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        char m = 0;
+        for (PetscInt jj = j - K; jj <= j + K && !m; ++jj) m = rowm[at(i, jj)];
+        near[at(i, j)] = m;
+      }
+    // 4. The distance of each owned cell centre to the nearest segment, the sign of 1/2 - c.
     PetscScalar** out;
     GF_PETSC(DMDAVecGetArray(dm, phi, &out));
     const double far = (kBand + 1) * std::max(b.hx, b.hy);
     for (PetscInt j = b.ys; j < b.ye(); ++j)
       for (PetscInt i = b.xs; i < b.xe(); ++i) {
-        const double px = b.xc(i), py = b.yc(j);
-        double best = std::numeric_limits<double>::infinity();
-        auto seg = [&](double xa, double ya, double xb, double yb) {
-          best = std::min(best, segment_distance(px, py, xa, ya, xb, yb));
-        };
-        for (int dj = -kBand; dj <= kBand; ++dj) {
-          const PetscInt jj = j + dj;
-          if (jj < 0 || jj >= b.ny) continue;
-          for (int di = -kBand; di <= kBand; ++di) {
-            const PetscInt ii = i + di;
-            if (!b.has_cell_x(ii)) continue;
-            const double x0 = b.xf(ii), y0 = b.yf(jj);
-            if (!std::isnan(C[jj][ii])) {
-              const Line l{A[jj][ii], B[jj][ii], C[jj][ii]};
-              double xa, ya, xb, yb;
-              if (line_segment(l, xa, ya, xb, yb))
-                seg(x0 + xa * b.hx, y0 + ya * b.hy, x0 + xb * b.hx, y0 + yb * b.hy);
-            }
-            // An interface along a cell face: a full cell next to an empty one (a column
-            // aligned with the grid has no cut cell at all). Walls are not interfaces.
-            const double cv = lc[jj][ii];
-            const bool full = cv >= 1 - kCut, empty = cv <= kCut;
-            if (!full && !empty) continue;
-            if (di < kBand && b.has_cell_x(ii + 1)) {
-              const double cn = lc[jj][ii + 1];
-              if ((full && cn <= kCut) || (empty && cn >= 1 - kCut))
-                seg(x0 + b.hx, y0, x0 + b.hx, y0 + b.hy);
-            }
-            if (dj < kBand && jj + 1 < b.ny) {
-              const double cn = lc[jj + 1][ii];
-              if ((full && cn <= kCut) || (empty && cn >= 1 - kCut))
-                seg(x0, y0 + b.hy, x0 + b.hx, y0 + b.hy);
-            }
-          }
-        }
         const double sign = lc[j][i] > 0.5 ? -1.0 : 1.0;
-        out[j][i] = sign * std::min(best, far);
+        if (!near[at(i, j)]) {
+          out[j][i] = sign * far;
+          continue;
+        }
+        const double px = b.xc(i), py = b.yc(j);
+        double best = far;
+        for (PetscInt jj = j - K; jj <= j + K; ++jj)
+          for (PetscInt ii = i - K; ii <= i + K; ++ii) {
+            if (!mark[at(ii, jj)]) continue;
+            const Segs& sg = segs[at(ii, jj)];
+            for (int q = 0; q < sg.n; ++q)
+              best = std::min(best, segment_distance(px, py, sg.x[q][0], sg.x[q][1],
+                                                     sg.x[q][2], sg.x[q][3]));
+          }
+        out[j][i] = sign * best;
       }
     GF_PETSC(DMDAVecRestoreArray(dm, phi, &out));
   }
