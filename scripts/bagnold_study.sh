@@ -2,7 +2,7 @@
 # The Bagnold mu(I) profile (analytic (b1), Gerris parameters, cases/verify/bagnold.toml) at
 # n = 8, 16, 32 cells across the layer, to its steady state (t = 400 s): error norms of u at
 # the cell-centre heights against the exact profile and against the peer code's norms in
-# ../shared/reference/bagnold_gerris_test.csv. Writes docs/bagnold.md (or OUT); exits 1 if a
+# tests/data/bagnold_gerris_test.csv. Writes docs/bagnold.md (or OUT); exits 1 if a
 # norm is larger than the peer's at some N (tests/verification/test_bagnold.sh runs N = 8 16).
 # usage: scripts/bagnold_study.sh [build dir] [N list, default "8 16 32"] [OUT]   (~45 s)
 set -euo pipefail
@@ -27,7 +27,7 @@ ns = [int(v) for v in sys.argv[4:]]
 mus, dmu, I0, d, a = 0.38, 0.26, 0.3, 0.04, 0.43
 Ia = I0 * (math.tan(a) - mus) / (mus + dmu - math.tan(a))
 U0 = Ia * math.sqrt(math.cos(a)) / d
-ref = gr.read_csv(f"{root}/../shared/reference/bagnold_gerris_test.csv")  # '#' lines skipped
+ref = gr.read_csv(f"{root}/tests/data/bagnold_gerris_test.csv")  # '#' lines skipped
 peer = {int(n): (l1, l2, li) for n, l1, l2, li in
         zip(*(ref[k].tolist() for k in ("N_cells", "L1_error", "L2_error", "Linf_error")))}
 times = dict(line.split() for line in open(f"{tmp}/times"))
@@ -48,7 +48,7 @@ out = [
     "for N = %s to t = 400 s, 1 rank). Errors of u at the N cell-centre heights against" % ", ".join(map(str, ns)),
     "(b1) of `../shared/reference/analytical_solutions.md` (u_surface = %.6f); mean, RMS and max" % (2 / 3 * U0),
     "(Gerris's `OutputErrorNorm` first, second and infinity norms); the peer's norms from",
-    "`../shared/reference/bagnold_gerris_test.csv`.",
+    "`tests/data/bagnold_gerris_test.csv`.",
     "",
     "| N | L1 | L2 | Linf | Gerris L1 | Gerris L2 | Gerris Linf | u at top cell | drift over last 50 s | wall s |",
     "|---|---|---|---|---|---|---|---|---|---|",

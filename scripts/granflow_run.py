@@ -33,8 +33,10 @@ Tables (diagnostics.csv, profiles.csv, structure.csv, deposit.csv, probes/NAME.c
 A table missing from the folder (structure.csv of a one-phase run, say) is an empty Table:
 `if run.structure:` tells whether there is one.
 
-Output times. The times in the files are the run's, to 17 digits, and may carry the float
-noise of their sum (0.30000000000000004): select a time by distance, not by `==`.
+Output times. A row written when a step lands on the output schedule (a multiple of
+output.interval, or t_end) carries the scheduled time itself (0.3, not the float noise of the
+steps' sum, 0.30000000000000004); other rows (adaptive steps that do not land on it, the row of
+a failure or a stop) carry the step's time, to 17 digits. Select a time by distance:
 
     d.times                             # the distinct output times, sorted
     p = run.profiles.at(0.3)            # the rows of the output time within 1e-9 s of 0.3 s

@@ -12,6 +12,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS
 case_file="${CASE:-$root/cases/ar07_rough.toml}"
 name="$(basename "$case_file" .toml)"
 out="${OUT:-$root/out/$name}"
-"$root/build/granflow" run "$case_file" --out "$out" "$@"
+# --overwrite: running the main job again replaces its previous run (granflow refuses an
+# existing run folder otherwise).
+"$root/build/granflow" run "$case_file" --out "$out" --overwrite "$@"
 /usr/bin/python3 "$root/scripts/plot_run.py" "$out"
 echo "granflow: results in $out (figures: $out/figures/)"

@@ -179,8 +179,8 @@ for r in "${RUNS[@]}"; do
   if [[ -L "$out" ]]; then echo "validation: $name is a link to an unfinished run, skipped"; continue; fi
   echo "validation: $name ($t tier, about $est): ${petsc:+PETSC_OPTIONS='$petsc' }granflow run ${case_file#$root/} $opts"
   start=$(date +%s)
-  # shellcheck disable=SC2086
-  PETSC_OPTIONS="${petsc:-${PETSC_OPTIONS:-}}" "$gf" run "$case_file" --out "$out" $opts \
+  # shellcheck disable=SC2086  # --overwrite: an unfinished run of this name starts again
+  PETSC_OPTIONS="${petsc:-${PETSC_OPTIONS:-}}" "$gf" run "$case_file" --out "$out" --overwrite $opts \
     >"$out_root/$name.log" 2>&1
   rc=$?
   echo "validation: $name finished rc=$rc in $(( $(date +%s) - start )) s (log $out_root/$name.log)"

@@ -26,7 +26,7 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import granflow_run as gr  # noqa: E402
 
 FIG = "docs/figures"
-GHIA = "/work/shared/reference"
+GHIA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "data")
 DPI = 100
 
 ISSUES = []  # failed checks, listed at the top of the document

@@ -25,14 +25,29 @@ void close() {
   g_file = nullptr;
 }
 
+std::string printable(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const unsigned char c : text) {
+    if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02X", static_cast<unsigned>(c));
+      out += b;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
 void message(const std::string& line) {
-  std::fprintf(stderr, "%s\n", line.c_str());
+  std::fprintf(stderr, "%s\n", printable(line).c_str());
   to_file(line);
 }
 
 void to_file(const std::string& line) {
   if (!g_file) return;
-  std::fprintf(g_file, "%s\n", line.c_str());
+  std::fprintf(g_file, "%s\n", printable(line).c_str());
   std::fflush(g_file);
 }
 

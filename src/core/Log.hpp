@@ -19,5 +19,9 @@ void close();
 void message(const std::string& line);
 // Only to the log file (e.g. the full command line, already known to the user).
 void to_file(const std::string& line);
+// `text` with every control character but the line feed and the tab shown as \xHH (ESC, CR,
+// BEL...): what granflow prints never reaches a terminal raw, whatever a case file or a
+// command line held. message() and to_file() apply it.
+std::string printable(const std::string& text);
 
 }  // namespace gf::log

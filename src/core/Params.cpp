@@ -14,7 +14,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <ostream>
 #include <sstream>
@@ -256,6 +258,30 @@ std::string trim(const std::string& s) {
   if (b == std::string::npos) return "";
   const auto e = s.find_last_not_of(" \t\r\n");
   return s.substr(b, e - b + 1);
+}
+
+// A decimal number as TOML writes one (sign, digits with '_', fraction, exponent): to tell a
+// number that failed to parse (out of range) from a word.
+bool looks_like_number(const std::string& t) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t b = i;
+    while (i < t.size() && (std::isdigit(static_cast<unsigned char>(t[i])) || t[i] == '_')) ++i;
+    return i > b;
+  };
+  if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+  bool any = digits();
+  if (i < t.size() && t[i] == '.') {
+    ++i;
+    any = digits() || any;
+  }
+  if (!any) return false;
+  if (i < t.size() && (t[i] == 'e' || t[i] == 'E')) {
+    ++i;
+    if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+    if (!digits()) return false;
+  }
+  return i == t.size();
 }
 
 std::string last_component(const std::string& key) {
@@ -650,6 +676,7 @@ struct ParamsLoader {
     const toml::node* node = nullptr;
     std::string origin;  // "case.toml:12" or "--set"
     int line = 0;        // 0 for overrides
+    bool quoted = false;  // a quoted dotted key ("grid.n" = 32)
   };
   struct Pending {  // a message about the file, sorted by line before it is reported
     int line;
@@ -691,7 +718,24 @@ struct ParamsLoader {
       int line = line_of(node);
       if (line == 0) line = static_cast<int>(k.source().begin.line);
       if (p.find(key)) {
-        cand[key] = {&node, origin(src, line), line};
+        // The same key twice: TOML itself refuses a repeated key within a table, but a quoted
+        // root key "grid.n" = 32 and [grid] n = 16 are two different keys to TOML and the same
+        // parameter here. Which one was meant is not ours to guess: an error, the first kept.
+        const bool quoted = std::string(k.str()).find('.') != std::string::npos;
+        if (const auto it = cand.find(key); it != cand.end()) {
+          pend.push_back({line, origin(src, line) + ": " + p.shown(key) + " = " +
+                                    show_node(node) + ": given twice (also at " +
+                                    it->second.origin + ", = " + show_node(*it->second.node) +
+                                    ")" +
+                                    (quoted || it->second.quoted
+                                         ? ": a quoted key \"" + key +
+                                               "\" is the same parameter as " +
+                                               last_component(key) + " in its [section]"
+                                         : "") +
+                                    "; keep one"});
+          continue;
+        }
+        cand[key] = {&node, origin(src, line), line, quoted};
         continue;
       }
       if (p.arrays_.count(key)) {
@@ -766,6 +810,16 @@ struct ParamsLoader {
     } catch (const toml::parse_error&) {
     }
     const bool wants_string = spec->type == ParamType::String || spec->type == ParamType::Enum;
+    // A number beyond the range of a double (1e999) is not valid TOML either; it must not then
+    // be read as a string ("got a string"): say what is wrong with it.
+    if (!parsed && !wants_string && looks_like_number(text)) {
+      late.add("--set: " + key + " = " + text + ": out of range: " +
+               (spec->type == ParamType::Integer
+                    ? std::string("beyond the 64-bit integers (+-9.2e18)")
+                    : std::string("not representable as a double (magnitude above 1.8e308 or "
+                                  "a non-zero value below 4.9e-324)")));
+      return;
+    }
     if (!parsed || (wants_string && !t->get("v")->is_string())) {
       t = std::make_unique<toml::table>();
       t->insert("v", text);
@@ -841,13 +895,24 @@ struct ParamsLoader {
 void Params::load(const std::string& path, const std::vector<std::string>& overrides,
                   InputErrors& errors) {
   std::optional<std::string> text;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  // A folder opens as a file on Linux and reads as nothing: that would be an empty case (all
+  // defaults), run without a word. A read error likewise must not leave a partial text.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    errors.add(path + ": is a folder, not a case file (give the path of a .toml file)");
+  } else if (std::FILE* f = std::fopen(path.c_str(), "rb"); !f) {
     errors.add(path + ": cannot open the case file (" + std::strerror(errno) + ")");
   } else {
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
+    std::string s;
+    char buf[1 << 14];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) s.append(buf, n);
+    const int err = std::ferror(f) ? errno : 0;
+    std::fclose(f);
+    if (err)
+      errors.add(path + ": cannot read the case file (" + std::strerror(err) + ")");
+    else
+      text = std::move(s);
   }
   // Overrides are still checked without a file, so one run reports every problem.
   ParamsLoader::run(*this, text, path, overrides, errors);

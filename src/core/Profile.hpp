@@ -50,5 +50,8 @@ class Scope {
 
 // Peak resident set size of this process, MiB (getrusage).
 double peak_rss_mib();
+// Memory this machine can still give, bytes: MemAvailable of /proc/meminfo, less if a cgroup
+// (a batch job's, a container's) limits this process to less. 0 if unknown.
+double available_memory_bytes();
 
 }  // namespace gf::prof

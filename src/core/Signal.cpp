@@ -1,8 +1,9 @@
 #include "core/Signal.hpp"
 
-#include <csignal>
-#include <initializer_list>
+#include <pthread.h>
+
 #include <cstdio>
+#include <initializer_list>
 
 namespace gf::signal {
 
@@ -17,6 +18,11 @@ extern "C" void on_stop(int sig) {
 
 void install_stop_handlers() {
   for (int sig : {SIGINT, SIGTERM}) {
+    // Already received (before PetscInitialize): the second one takes the default action.
+    if (g_signal == sig) {
+      std::signal(sig, SIG_DFL);
+      continue;
+    }
     struct sigaction sa {};
     sa.sa_handler = on_stop;
     sigemptyset(&sa.sa_mask);
@@ -34,5 +40,23 @@ const char* name(int sig) {
   std::snprintf(buf, sizeof buf, "signal %d", sig);
   return buf;
 }
+
+void unblock() {
+  sigset_t s;
+  sigemptyset(&s);
+  sigaddset(&s, SIGINT);
+  sigaddset(&s, SIGTERM);
+  pthread_sigmask(SIG_UNBLOCK, &s, nullptr);
+}
+
+Blocked::Blocked() {
+  sigset_t s;
+  sigemptyset(&s);
+  sigaddset(&s, SIGINT);
+  sigaddset(&s, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &s, &old_);
+}
+
+Blocked::~Blocked() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
 
 }  // namespace gf::signal

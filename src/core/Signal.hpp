@@ -3,10 +3,16 @@
 // handler only records the signal (async-signal-safe: one sig_atomic_t store) and puts the
 // default action back, so a second signal kills the process at once. The time loop polls
 // stop_signal() after each step, agrees on it across ranks, writes a checkpoint and the
-// diagnostics, and exits with kExitInterrupted (core/Error.hpp).
+// diagnostics, and exits with kExitInterrupted (core/Error.hpp); the start-up of a run polls
+// it too, between its stages, so that a signal at any time after main() begins stops the run
+// cleanly.
 //
-// install_stop_handlers() must run after PetscInitialize, which installs PETSc's own handler
-// for SIGTERM (an abort with a stack trace) that this one replaces.
+// apps/ installs the handlers first thing in main() (the launcher apps/launcher.c holds the
+// signals blocked until then, while the libraries load), then holds the two signals blocked
+// during PetscInitialize (which installs PETSc's own SIGTERM handler, an abort with a stack
+// trace), installs them again and unblocks: a signal that arrived meanwhile is delivered to
+// this handler then, not lost and not an abort.
+#include <csignal>
 
 namespace gf::signal {
 
@@ -15,5 +21,22 @@ void install_stop_handlers();
 int stop_signal();
 // "SIGINT", "SIGTERM" or "signal N".
 const char* name(int sig);
+
+// Unblocks SIGINT and SIGTERM (held blocked by the launcher, apps/launcher.c): a pending one is
+// delivered at once. Call after install_stop_handlers().
+void unblock();
+
+// While alive, SIGINT and SIGTERM are blocked (held pending) in this thread and the threads
+// it starts.
+class Blocked {
+ public:
+  Blocked();
+  ~Blocked();
+  Blocked(const Blocked&) = delete;
+  Blocked& operator=(const Blocked&) = delete;
+
+ private:
+  sigset_t old_{};
+};
 
 }  // namespace gf::signal

@@ -40,9 +40,18 @@ Grid::Grid(MPI_Comm comm, PetscInt nx, PetscInt ny, double Lx, double Ly, bool p
                      show(pyo) + " do not fit the " + std::to_string(size_) +
                      " MPI ranks (each must divide it, their product must equal it)");
   }
-  GF_PETSC(DMDACreate2d(comm, bx, bt, DMDA_STENCIL_BOX, nx, ny, pxo, pyo, 1, kGhost, nullptr,
-                        nullptr, &dm_cell_));
-  GF_PETSC(DMSetUp(dm_cell_));
+  // PETSc refuses a split whose parts are thinner than the stencil: the user's grid and ranks
+  // (setup/ checks this first; this is the last word if its prediction differs).
+  try {
+    GF_PETSC(DMDACreate2d(comm, bx, bt, DMDA_STENCIL_BOX, nx, ny, pxo, pyo, 1, kGhost, nullptr,
+                          nullptr, &dm_cell_));
+    GF_PETSC(DMSetUp(dm_cell_));
+  } catch (const PetscFailure& e) {
+    throw InputError("grid: " + std::to_string(nx) + " x " + std::to_string(ny) +
+                     " cells cannot be split over " + std::to_string(size_) +
+                     " MPI ranks with a stencil of " + std::to_string(kGhost) +
+                     " cells: use fewer ranks or a larger grid (" + e.what() + ")");
+  }
   // All other DMs copy the cell DM's parallel layout so that (i, j) is owned by the same rank.
   PetscInt px, py;
   const PetscInt *lx, *ly;

@@ -22,7 +22,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kMagic = "granflow-checkpoint 1";
+// Version 2 headers end with their own checksum; version 1 (older granflow) had none and is
+// still read.
+constexpr const char* kMagic = "granflow-checkpoint 2";
+constexpr const char* kMagicV1 = "granflow-checkpoint 1";
+constexpr const char* kHeaderSum = "header.fnv1a64";
 constexpr const char* kState = "state.bin";
 constexpr const char* kHeader = "header.txt";
 
@@ -51,6 +55,15 @@ bool fnv1a64(const std::string& path, std::uint64_t& hash, std::uint64_t& bytes)
   const bool ok = !std::ferror(f);
   std::fclose(f);
   return ok;
+}
+
+std::uint64_t fnv1a64_text(const std::string& text) {
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (const unsigned char c : text) {
+    hash ^= c;
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
 }
 
 std::string hex64(std::uint64_t v) {
@@ -131,6 +144,16 @@ const std::string* CheckpointHeader::find(const std::string& key) const {
 
 bool CheckpointHeader::has(const std::string& key) const { return find(key) != nullptr; }
 
+std::vector<std::string> CheckpointHeader::file_names() const {
+  std::vector<std::string> names;
+  const std::string pre = "file.", suf = ".fnv1a64";
+  for (const auto& [k, v] : entries_)
+    if (k.size() > pre.size() + suf.size() && k.compare(0, pre.size(), pre) == 0 &&
+        k.compare(k.size() - suf.size(), suf.size(), suf) == 0)
+      names.push_back(k.substr(pre.size(), k.size() - pre.size() - suf.size()));
+  return names;
+}
+
 std::string CheckpointHeader::get_text(const std::string& key) const {
   const std::string* v = find(key);
   if (!v) throw IoError(source_ + ": the checkpoint header has no '" + key + "' (corrupt, or written by another granflow version)");
@@ -162,6 +185,8 @@ long long CheckpointHeader::get_int(const std::string& key) const {
 std::string CheckpointHeader::str() const {
   std::string s = std::string(kMagic) + "\n";
   for (const auto& [k, v] : entries_) s += k + " " + v + "\n";
+  // The checksum of every line above: an edit of the step, the time or dt (t nan) is caught.
+  s += std::string(kHeaderSum) + " " + hex64(fnv1a64_text(s)) + "\n";
   s += "end\n";  // a header cut short is recognised as such
   return s;
 }
@@ -171,10 +196,12 @@ CheckpointHeader CheckpointHeader::parse(const std::string& text, const std::str
   h.source_ = source;
   std::istringstream in(text);
   std::string line;
-  if (!std::getline(in, line) || line != kMagic)
+  if (!std::getline(in, line) || (line != kMagic && line != kMagicV1))
     throw IoError(source + ": not a granflow checkpoint header (first line '" + line +
                   "', expected '" + kMagic + "')");
-  bool ended = false;
+  const bool summed = line == kMagic;
+  std::string before = line + "\n";  // the text the header checksum covers
+  bool ended = false, checked = false;
   int n = 1;
   while (std::getline(in, line)) {
     ++n;
@@ -187,11 +214,26 @@ CheckpointHeader CheckpointHeader::parse(const std::string& text, const std::str
     if (sp == std::string::npos || !valid_key(key))
       throw IoError(source + ": line " + std::to_string(n) + " is malformed: '" + line +
                     "' (corrupt checkpoint)");
+    if (summed && key == kHeaderSum) {
+      const std::string want = line.substr(sp + 1), got = hex64(fnv1a64_text(before));
+      if (got != want)
+        throw IoError(source + ": the header fails its checksum (FNV-1a " + got + ", recorded " +
+                      want + "): the header was edited or is corrupt");
+      checked = true;
+      continue;
+    }
+    if (checked)
+      throw IoError(source + ": line " + std::to_string(n) + " follows the header's checksum: '" +
+                    line + "' (the header was edited)");
+    before += line + "\n";
     h.entries_.emplace_back(key, line.substr(sp + 1));
   }
   if (!ended)
     throw IoError(source + ": the header is incomplete (no 'end' line): the checkpoint is "
                   "truncated or corrupt");
+  if (summed && !checked)
+    throw IoError(source + ": the header has no checksum line (" + kHeaderSum +
+                  "): the header was edited or is corrupt");
   return h;
 }
 
@@ -207,8 +249,12 @@ void write_checkpoint(MPI_Comm comm, const std::string& out_dir, CheckpointHeade
   if (rank == 0) {
     std::error_code ec;
     fs::remove_all(tmp, ec);  // a checkpoint that was being written when a run died
-    if (!ec) fs::create_directories(tmp, ec);
-    if (ec) err = "cannot create '" + tmp + "': " + ec.message();
+    // Not create_directories: an output folder removed during the run must not be made again
+    // (with the checkpoint and summary.json in it, the run would look complete).
+    if (!ec) fs::create_directory(tmp, ec);
+    if (ec)
+      err = "cannot create '" + tmp + "': " + ec.message() +
+            (fs::is_directory(out_dir) ? "" : " (the output folder was removed?)");
   }
   raise_on_all_ranks(comm, err);
 
@@ -250,8 +296,10 @@ void write_checkpoint(MPI_Comm comm, const std::string& out_dir, CheckpointHeade
     if (err.empty()) {
       header.set("state.bytes", static_cast<long long>(bytes));
       header.set_text("state.fnv1a64", hex64(hash));
-      for (const auto& [name, text] : files)
+      for (const auto& [name, text] : files) {
+        header.set_text("file." + name + ".fnv1a64", hex64(fnv1a64_text(text)));
         if (err.empty()) err = write_text(tmp + "/" + name, text);
+      }
       // The header last: its presence with an 'end' line marks a complete folder.
       if (err.empty()) err = write_text(tmp + "/" + kHeader, header.str());
       if (err.empty()) err = sync_path(tmp);
@@ -267,7 +315,7 @@ void write_checkpoint(MPI_Comm comm, const std::string& out_dir, CheckpointHeade
       if (ec) err = "cannot rename '" + tmp + "' to '" + final_dir + "': " + ec.message();
     }
     if (err.empty()) err = sync_path(out_dir);
-    if (err.empty()) fs::remove_all(prev, ec);  // only now is the new one safely in place
+    // checkpoint.prev stays: if the new one is damaged later, a restart falls back to it.
     if (!err.empty()) err += " (the previous checkpoint is kept)";
   }
   raise_on_all_ranks(comm, err);
@@ -340,6 +388,15 @@ CheckpointHeader read_checkpoint_header(MPI_Comm comm, const std::string& ckpt_d
             "): the checkpoint is corrupt";
   }
   raise_on_all_ranks(comm, err);
+  // The caller's files (e.g. the resolved case), where the header records their checksums.
+  for (const std::string& name : h.file_names()) {
+    const std::string text = read_checkpoint_file(comm, ckpt_dir, name);
+    const std::string want_f = h.get_text("file." + name + ".fnv1a64");
+    if (hex64(fnv1a64_text(text)) != want_f)
+      throw IoError("'" + ckpt_dir + "/" + name + "' fails its checksum (FNV-1a " +
+                    hex64(fnv1a64_text(text)) + ", header " + want_f +
+                    "): the checkpoint is corrupt or was edited");
+  }
   return h;
 }
 

@@ -62,10 +62,12 @@ CollapseMonitor::CollapseMonitor(const Grid& g, CollapseConfig cfg, const std::s
     u_ref_ = h.get_double("collapse.u_ref");
     first_ = h.get_int("collapse.first") != 0;
     t_ = parse_list(h, "collapse.t");
+    // The times written (older checkpoints: the step times).
+    tw_ = h.has("collapse.t_written") ? parse_list(h, "collapse.t_written") : t_;
     front_ = parse_list(h, "collapse.front");
     umax_ = parse_list(h, "collapse.umax");
     h_last_ = parse_list(h, "collapse.h_last");
-    if (front_.size() != t_.size() || umax_.size() != t_.size() ||
+    if (front_.size() != t_.size() || umax_.size() != t_.size() || tw_.size() != t_.size() ||
         (!h_last_.empty() && h_last_.size() != x_.size()))
       throw IoError(h.source() + ": inconsistent collapse history (collapse.*)");
     bytes[0] = h.get_int("collapse.bytes_profiles");
@@ -94,6 +96,7 @@ void CollapseMonitor::save(CheckpointHeader& h) const {
   h.set("collapse.u_ref", u_ref_);
   h.set("collapse.first", static_cast<long long>(first_));
   h.set_text("collapse.t", hex_list(t_));
+  h.set_text("collapse.t_written", hex_list(tw_));
   h.set_text("collapse.front", hex_list(front_));
   h.set_text("collapse.umax", hex_list(umax_));
   h.set_text("collapse.h_last", hex_list(h_last_));
@@ -104,7 +107,8 @@ void CollapseMonitor::save(CheckpointHeader& h) const {
 
 CollapseMonitor::~CollapseMonitor() = default;
 
-CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec p) {
+CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec p,
+                                                 double t_written) {
   Sample s;
   const std::vector<double> h = surface_heights(g_, phi);
   s.front_x = front_position(g_, phi);
@@ -124,26 +128,41 @@ CollapseMonitor::Sample CollapseMonitor::sample(double t, Vec phi, Vec vel, Vec 
   const auto deps = basal_deposits(g_, vel, h, s.front_x, gate_, u_ref_, cfg_.cutoffs);
   max_p_ = std::isnan(max_p_) || std::isnan(s.max_p_granular) ? kNaN
                                                                 : std::max(max_p_, s.max_p_granular);
+  const double tw = std::isnan(t_written) ? t : t_written;
   t_.push_back(t);
+  tw_.push_back(tw);
   front_.push_back(s.front_x);
   umax_.push_back(s.max_speed_granular);
   h_last_ = h;
+  // The history keeps the step time (the stage fits use it); the files the time written.
+  std::string err;  // rank 0 writes; its failure is raised on every rank
   if (profiles_ && g_.rank() == 0) {
-    const double a_min = 1e-6 * g_.hx() * g_.hy();
-    for (std::size_t i = 0; i < h.size(); ++i) profiles_->row({t, x_[i], h[i]});
-    for (const auto& d : deps) {
-      for (std::size_t i = 0; i < h.size(); ++i)
-        structure_->row({t, d.cutoff, x_[i], h[i], d.h_deposit[i], h[i] - d.h_deposit[i]});
-      deposit_->row({t, d.cutoff, s.max_speed_granular, u_ref_, s.front_x, d.x_deposit, d.L,
-                     d.L_d, d.L_h, d.A, d.A_d, d.A >= a_min ? d.A_d / d.A : kNaN});
+    try {
+      const double a_min = 1e-6 * g_.hx() * g_.hy();
+      for (std::size_t i = 0; i < h.size(); ++i) profiles_->row({tw, x_[i], h[i]});
+      for (const auto& d : deps) {
+        for (std::size_t i = 0; i < h.size(); ++i)
+          structure_->row({tw, d.cutoff, x_[i], h[i], d.h_deposit[i], h[i] - d.h_deposit[i]});
+        deposit_->row({tw, d.cutoff, s.max_speed_granular, u_ref_, s.front_x, d.x_deposit, d.L,
+                       d.L_d, d.L_h, d.A, d.A_d, d.A >= a_min ? d.A_d / d.A : kNaN});
+      }
+    } catch (const IoError& e) {
+      err = e.what();
     }
   }
+  if (profiles_) raise_on_all_ranks(g_.comm(), err);
   return s;
 }
 
 void CollapseMonitor::summarize(JsonObject& js) const {
   if (t_.empty()) return;
   const Stages st = detect_stages(t_, front_, umax_, cfg_.stages);
+  // A stage time is one of the output times: reported as it was written (the schedule's).
+  const auto written = [&](double t) {
+    for (std::size_t k = 0; k < t_.size(); ++k)
+      if (t_[k] == t) return tw_[k];
+    return t;
+  };
   const double front = front_.back();
   const double p_scale = cfg_.rho_s * cfg_.gravity * Hc_;
   const auto& bk = cfg_.slope_back_range;
@@ -156,10 +175,10 @@ void CollapseMonitor::summarize(JsonObject& js) const {
       .set("backwall_height_m", backwall_height(h_last_))
       .set("front_speed_mps", st.front_speed)
       .set("max_front_speed_mps", st.max_front_speed)
-      .set("t1_s", st.t1)
-      .set("t2_s", st.t2)
-      .set("t3_s", st.t3)
-      .set("tf_s", st.tf)
+      .set("t1_s", written(st.t1))
+      .set("t2_s", written(st.t2))
+      .set("t3_s", written(st.t3))
+      .set("tf_s", written(st.tf))
       .set("max_p_granular_pa", max_p_)
       .set("pressure_scale_pa", p_scale)
       .set("max_p_granular_ratio", p_scale > 0 ? max_p_ / p_scale : kNaN)

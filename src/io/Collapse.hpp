@@ -7,6 +7,7 @@
 #include <petscvec.h>
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,8 +46,11 @@ class CollapseMonitor {
   struct Sample {
     double front_x, backwall_h, max_p_granular, max_speed_granular;
   };
-  // Collective. Measures the state at time t, appends to the history and the files.
-  Sample sample(double t, Vec phi, Vec vel, Vec p);
+  // Collective. Measures the state at time t, appends to the history and the files, whose
+  // rows carry the time t_written (the output schedule's time; NaN: t). A failed write throws
+  // IoError on every rank.
+  Sample sample(double t, Vec phi, Vec vel, Vec p,
+                double t_written = std::numeric_limits<double>::quiet_NaN());
   // Adds the collapse keys (runout_m ... front_angle_deg, see the README) to `js`.
   void summarize(JsonObject& js) const;
   // The history (times, fronts, speeds, the last profile, the gate, H_c, the running maxima) and
@@ -58,6 +62,7 @@ class CollapseMonitor {
   CollapseConfig cfg_;
   std::vector<double> x_;  // column centres, m
   std::vector<double> t_, front_, umax_;
+  std::vector<double> tw_;  // the times written for t_ (the output schedule's)
   std::vector<double> h_last_;
   double gate_ = 0, Hc_ = 0, max_p_ = 0;
   double u_ref_ = 0;  // m/s, the largest max_speed_granular so far: the cut-offs' reference

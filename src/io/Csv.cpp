@@ -1,5 +1,7 @@
 #include "io/Csv.hpp"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -97,6 +99,12 @@ void CsvWriter::row(const std::vector<double>& values) {
   bytes_ += static_cast<long long>(line.size());
   if (std::fputs(line.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
     throw IoError("cannot write '" + path_ + "': " + std::strerror(errno) + " (disk full?)");
+  // A file deleted while open (its folder removed during the run) still takes writes, into
+  // an inode nobody can reach: the rows are lost, which must not pass as success.
+  struct stat st {};
+  if (fstat(fileno(file_.get()), &st) == 0 && st.st_nlink == 0)
+    throw IoError("'" + path_ + "' was deleted while the run was writing it (its folder "
+                  "removed?): its rows are lost");
 }
 
 }  // namespace gf::io

@@ -36,7 +36,8 @@ class CsvWriter {
   CsvWriter& operator=(CsvWriter&&) noexcept = default;
 
   // Not collective. `values.size()` must equal the number of columns (checked on every rank:
-  // std::invalid_argument). On rank 0 a failed write throws IoError on rank 0 only.
+  // std::invalid_argument). On rank 0 a failed write throws IoError on rank 0 only; so does a
+  // file deleted since it was opened (its rows would go nowhere).
   void row(const std::vector<double>& values);
 
   const std::string& path() const { return path_; }

@@ -110,6 +110,7 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
   r.dt_min = c.time.dt_min;
   r.max_steps = c.time.max_steps;
   r.max_speed = c.time.max_speed;
+  r.speed_scale = velocity_scale(c);
   r.checkpoint_interval_steps = c.output.checkpoint_interval_steps;
   r.checkpoint_wall_s = c.output.checkpoint_wall_s;
   r.volume_warn_pct = c.output.volume_warn_pct;

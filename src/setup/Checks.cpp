@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <numbers>
 
 #include "setup/Names.hpp"
+#include "setup/Report.hpp"
 
 namespace gf {
 
@@ -67,6 +69,8 @@ class CaseChecks {
   }
   void grid();
   void time();
+  void fixed_step();
+  void counts();
   void phase();
   void geometry();
   void rotation();
@@ -119,6 +123,89 @@ void CaseChecks::time() {
   if (ok({"output.interval", "time.t_end"}) && c.output.interval > c.time.t_end)
     c.warnings.push_back("output.interval = " + format_number(c.output.interval) +
                          " s is longer than time.t_end: diagnostics only at the start and end");
+  fixed_step();
+  counts();
+}
+
+// A fixed step: it must exist, and it must not be far beyond the stability limits that the
+// adaptive step respects (Simulation::choose_dt): the convective CFL number U dt / h <= 1 with
+// the case's velocity scale U (the report's), and, when momentum is solved under gravity, the
+// gravity limit dt <= sqrt(h / |g|) (the time to fall one cell from rest, up to sqrt 2).
+void CaseChecks::fixed_step() {
+  if (!ok({"time.dt", "time.dt_mode", "grid.n", "grid.nx", "domain.Lx", "domain.Ly",
+           "physics.gravity"}) ||
+      c.time.dt_mode != CaseConfig::DtMode::Fixed)
+    return;
+  const double dt = c.time.dt;
+  if (dt <= 0) {
+    errors.add(p.where("time.dt") + ": time.dt_mode = \"fixed\" needs the step: must be > 0 "
+               "(s), or use time.dt_mode = \"adaptive\"");
+    return;
+  }
+  const double h = std::min(c.hx, c.hy);
+  const double U = velocity_scale(c);
+  const double g = std::hypot(c.gravity[0], c.gravity[1]);
+  double limit = std::numeric_limits<double>::infinity();
+  std::string why;
+  if (U > 0) {
+    limit = h / U;
+    why = "CFL number U dt / h = " + g4(U * dt / h) + " (U = " + g4(U) + " m/s, h = " +
+          format_number(h) + " m)";
+  }
+  if (momentum && g > 0 && std::sqrt(h / g) < limit) {
+    limit = std::sqrt(h / g);
+    why = "dt / sqrt(h / |g|) = " + g4(dt / limit) + " (the gravity limit sqrt(h / |g|) = " +
+          g4(limit) + " s, h = " + format_number(h) + " m, |g| = " + g4(g) + " m/s^2)";
+  }
+  if (!(dt > limit)) return;
+  // Up to kFarBeyond times the limit a run may survive (U is an estimate, the flow may stay
+  // slower): a warning. Beyond, no step of the explicit convection or of the fall from rest
+  // can be stable: refused.
+  constexpr double kFarBeyond = 10;
+  if (dt > kFarBeyond * limit)
+    errors.add(p.where("time.dt") + ": with time.dt_mode = \"fixed\" the step is " +
+               g4(dt / limit) + " times the stability limit, " + why +
+               ": must be <= " + g4(kFarBeyond * limit) + " s (" + format_number(kFarBeyond) +
+               " times the limit " + g4(limit) + " s); stable steps are <= " + g4(limit) +
+               " s, or use time.dt_mode = \"adaptive\"");
+  else
+    c.warnings.push_back("time.dt = " + format_number(dt) + " s (fixed) is beyond the stability "
+                         "limit " + g4(limit) + " s: " + why + " > 1; the run may blow up: try "
+                         "time.dt <= " + g4(limit) + " s or time.dt_mode = \"adaptive\"");
+}
+
+// The number of steps and outputs to t_end: bounded, so that a slip of the exponent
+// (output.interval = 1e-300, time.t_end = 1e308) is an error here instead of a run that never
+// ends or writes without end.
+void CaseChecks::counts() {
+  if (!ok({"time.t_end", "time.dt", "time.dt_mode", "time.dt_max", "output.interval",
+           "output.vtk_interval"}))
+    return;
+  const double T = c.time.t_end;
+  // The message names both keys, where each was given: either may be the slip.
+  const auto too_many = [&](const std::string& key, double per, double limit,
+                            const std::string& what, const std::string& why) {
+    const double n = T / per;
+    if (!(n > limit)) return;
+    errors.add(p.where(key) + " with " + p.where("time.t_end") + ": time.t_end / " + key +
+               " = " + g4(n) + " " + what +
+               ", more than " + g4(limit) + " (" + why + "): needs " + key + " >= " +
+               g4(T / limit) + " s or time.t_end <= " + g4(limit * per) + " s");
+  };
+  // 1e9 steps: beyond any run (even the smallest grid takes about 1e-4 s per step: more than a
+  // day), and the loop's time tolerance, 1e-12 t_end, must stay far below one step.
+  const bool fixed = c.time.dt_mode == CaseConfig::DtMode::Fixed;
+  if (!fixed || c.time.dt > 0)
+    too_many(fixed ? "time.dt" : "time.dt_max", fixed ? c.time.dt : c.time.dt_max, kMaxSteps,
+             fixed ? "steps" : "steps at least (the adaptive step is at most time.dt_max)",
+             "no run can take them: at 1e-4 s per step on the smallest grid that is over a day");
+  // A diagnostics row (~0.5 kB, plus a row per probe point) every output.interval.
+  too_many("output.interval", c.output.interval, kMaxOutputs, "diagnostics outputs",
+           "a row of diagnostics.csv and of every probe each: gigabytes of tables");
+  // A VTK file holds 11 values per cell: 1e5 files are 1e5 times the size of the state.
+  if (c.output.vtk_interval > 0)
+    too_many("output.vtk_interval", c.output.vtk_interval, kMaxVtkOutputs, "VTK files",
+             "each holds 11 values per cell");
 }
 
 // The level set, the initial shape and a prescribed flow must agree.

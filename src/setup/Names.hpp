@@ -33,6 +33,10 @@ inline const std::vector<std::string> kInterfaceNormals{"level_set", "youngs"};
 
 // Counts are stored as int; these bounds keep them (and nx * ny) far from overflow.
 inline constexpr double kMaxCellsPerSide = 100000;
+// The most steps and outputs a case may ask for to time.t_end (setup/Checks.cpp says why).
+inline constexpr double kMaxSteps = 1e9;
+inline constexpr double kMaxOutputs = 1e7;
+inline constexpr double kMaxVtkOutputs = 1e5;
 
 template <class E>
 E enum_of(const std::vector<std::string>& names, const std::string& s) {

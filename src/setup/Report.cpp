@@ -1,8 +1,12 @@
 // The `granflow check` report: scales, numbers and the cost estimate (setup/Report.hpp).
 #include "setup/Report.hpp"
 
+#include <petscsys.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -163,6 +167,96 @@ void rheology_numbers(const CaseConfig& c, double U, std::vector<std::string>& n
 
 double velocity_scale(const CaseConfig& c) { return velocity_scale_of(c).U; }
 
+double memory_estimate_bytes(const CaseConfig& c, int nranks) {
+  const double cells = static_cast<double>(c.nx) * c.ny;
+  return std::max(nranks, 1) * kBytesPerRank +
+         cells * (c.rheology.node_copy ? kBytesPerCellNodeCopy : kBytesPerCell);
+}
+
+namespace {
+
+std::string gib(double bytes) { return g4(bytes / (1024.0 * 1024 * 1024)) + " GiB"; }
+
+// PETSc's processor grid for an M x N DMDA on `size` ranks (DMSetUp_DA_2D, PETSc 3.18): the
+// counts asked for, else the most square split, the longer side cut more often.
+std::array<long long, 2> petsc_processor_grid(long long M, long long N, int size, int px,
+                                              int py) {
+  long long m = px, n = py;
+  if (m <= 0 || n <= 0) {
+    if (n > 0)
+      m = size / n;
+    else if (m > 0)
+      n = size / m;
+    else {
+      m = static_cast<long long>(0.5 + std::sqrt(static_cast<double>(M) * size / N));
+      if (m == 0) m = 1;
+      while (m > 0) {
+        n = size / m;
+        if (m * n == size) break;
+        --m;
+      }
+      if (M > N && m < n) std::swap(m, n);
+    }
+  }
+  return {std::max(m, 1LL), std::max(n, 1LL)};
+}
+
+}  // namespace
+
+std::vector<std::string> resource_problems(const CaseConfig& c, int nranks,
+                                           double available_bytes, int da_px, int da_py) {
+  std::vector<std::string> out;
+  nranks = std::max(nranks, 1);
+  const double cells = static_cast<double>(c.nx) * c.ny;
+  const std::string grid = "grid.n = " + std::to_string(c.ny) + " (" + std::to_string(c.nx) +
+                           " x " + std::to_string(c.ny) + " = " + g4(cells) + " cells)";
+  // PETSc indexes with PetscInt: the global size of every field, and each rank's nonzeros of
+  // a matrix (its row pointers), must fit.
+  const double max_int = static_cast<double>(std::numeric_limits<PetscInt>::max());
+  const std::string bits = std::to_string(8 * sizeof(PetscInt)) + "-bit";
+  const double node_values = 3.0 * (c.nx + 1.0) * (c.ny + 1.0);  // S at the nodes, 3 each
+  if (node_values > max_int)
+    out.push_back(grid + ": the largest field (the plastic tensor at the nodes, 3 values per "
+                  "node) has " + g4(node_values) + " values, beyond PETSc's " + bits +
+                  " index limit " + g4(max_int) + ": at most about " + g4(max_int / 3) +
+                  " cells (this PETSc is built with " + bits + " PetscInt)");
+  const double nnz_rank = 36.0 * cells / nranks;  // viscous matrix: 2 unknowns x 18 per row
+  if (node_values <= max_int && nnz_rank > max_int)
+    out.push_back(grid + " on " + std::to_string(nranks) + " rank(s): each rank's part of the "
+                  "viscous matrix has " + g4(nnz_rank) + " nonzeros (36 per cell), beyond "
+                  "PETSc's " + bits + " index limit " + g4(max_int) + ": use at least " +
+                  std::to_string(static_cast<long long>(std::ceil(36.0 * cells / max_int))) +
+                  " ranks or a smaller grid.n");
+  // Each rank's part of the grid must be at least as wide as the stencil (kGhost = 3 cells for
+  // WENO5): PETSc refuses thinner parts.
+  const auto [m, n] = petsc_processor_grid(c.nx, c.ny, nranks, da_px, da_py);
+  const long long ghost = 3;
+  const auto thin = [&](long long cells_side, long long parts, const char* side,
+                        const char* key) {
+    if (cells_side / parts < ghost)
+      out.push_back(grid + " on " + std::to_string(nranks) + " ranks: the processor grid " +
+                    std::to_string(m) + " x " + std::to_string(n) + " cuts " + side + " into " +
+                    std::to_string(parts) + " parts of " + std::to_string(cells_side / parts) +
+                    " cells, thinner than the stencil (" + std::to_string(ghost) +
+                    " cells): use at most " + std::to_string(cells_side / ghost) +
+                    " parts there (fewer ranks, -da_processors_" + key + "), or a larger grid");
+  };
+  if (m * n == nranks) {  // otherwise the grid says that the processor grid does not fit
+    thin(c.nx, m, "nx", "x");
+    thin(c.ny, n, "ny", "y");
+  }
+  const double need = memory_estimate_bytes(c, nranks);
+  if (available_bytes > 0 && need > available_bytes)
+    out.push_back(grid + " on " + std::to_string(nranks) + " rank(s) needs about " + gib(need) +
+                  " of memory (" + g4((c.rheology.node_copy ? kBytesPerCellNodeCopy
+                                                              : kBytesPerCell) / 1024) +
+                  " KiB per cell and " + g4(kBytesPerRank / (1024 * 1024)) +
+                  " MiB per rank, the measured peak of case A), more than the " +
+                  gib(available_bytes) + " available on the machine(s) of the ranks: use a "
+                  "smaller grid.n (memory grows as grid.n^2), or more machines");
+  return out;
+}
+
 double initial_dt(const CaseConfig& c) {
   if (c.time.dt > 0) return c.time.dt;
   const double U = velocity_scale(c);
@@ -170,7 +264,7 @@ double initial_dt(const CaseConfig& c) {
   return U > 0 ? std::min(c.time.cfl * h / U, c.time.dt_max) : c.time.dt_max;
 }
 
-std::string describe_case(const CaseConfig& c, int nranks) {
+std::string describe_case(const CaseConfig& c, int nranks, double available_bytes) {
   std::ostringstream os;
   nranks = std::max(nranks, 1);
   const long long cells = static_cast<long long>(c.nx) * c.ny;
@@ -247,6 +341,12 @@ std::string describe_case(const CaseConfig& c, int nranks) {
      << "\n           (an estimate: " << g4(per) << " s per cell per step on one core"
      << (plastic ? " with the fixed point of eq. 31" : "") << ", perfect scaling assumed;\n"
         "           adaptive steps and solver iterations change the real cost)\n";
+  os << "memory     about " << gib(memory_estimate_bytes(c, nranks)) << " on " << nranks
+     << (nranks == 1 ? " rank" : " ranks") << " ("
+     << g4((c.rheology.node_copy ? kBytesPerCellNodeCopy : kBytesPerCell) / 1024)
+     << " KiB per cell + " << g4(kBytesPerRank / (1024 * 1024)) << " MiB per rank)";
+  if (available_bytes > 0) os << "; " << gib(available_bytes) << " available";
+  os << "\n";
   for (const auto& w : c.warnings) os << "warning    " << w << "\n";
   return os.str();
 }

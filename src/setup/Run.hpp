@@ -10,6 +10,7 @@ struct CommandLine {
   std::string case_file, out_dir, restart_dir;
   std::vector<std::string> sets;  // --set key=value
   bool list = false;              // check --list
+  bool overwrite = false;         // run --overwrite: replace the run folder at --out
   int argc_all = 0;               // the whole command line, for the provenance
   char** argv_all = nullptr;
   int petsc_argc = 0;  // the options after "--" (argv[0] first), for PETSc

@@ -2,6 +2,7 @@
 // allowed range and help text (core/Params.hpp). See setup/Case.hpp.
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <ostream>
 
 #include "setup/Case.hpp"
@@ -13,11 +14,37 @@ using namespace setup_detail;
 
 namespace {
 
+// A probe's name is its file name (probes/<name>.csv) and a word of the checkpoint header.
+// File names are limited to 255 bytes (NAME_MAX), and a name is also a column label in plots:
+// kMaxProbeName characters are plenty and leave room for the folder and the suffix.
+constexpr std::size_t kMaxProbeName = 64;
+
 std::string probe_name_rule(const std::string& s) {
   const bool ok = !s.empty() && std::all_of(s.begin(), s.end(), [](char ch) {
     return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
   });
-  return ok ? "" : "must be made of letters, digits, _ and - only ([A-Za-z0-9_-]+)";
+  if (!ok) return "must be made of letters, digits, _ and - only ([A-Za-z0-9_-]+)";
+  if (s.size() > kMaxProbeName)
+    return "is " + std::to_string(s.size()) + " characters long: at most " +
+           std::to_string(kMaxProbeName) + " (it becomes the file name probes/<name>.csv)";
+  return "";
+}
+
+// Text that is printed (the title on the terminal and in the log, the PETSc options in
+// command.txt): one line without control characters, so that an ESC sequence or a carriage
+// return in a case file cannot rewrite the user's terminal or hide a line of the log.
+std::string printable_rule(const std::string& s) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const unsigned char c = static_cast<unsigned char>(s[k]);
+    if (c < 0x20 || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "0x%02X", static_cast<unsigned>(c));
+      return std::string("must be one line of printable text: character ") +
+             std::to_string(k + 1) + " is the control character " + b +
+             (c == 0x1b ? " (ESC)" : c == '\r' ? " (CR)" : c == '\n' ? " (line feed)" : "");
+    }
+  }
+  return "";
 }
 
 }  // namespace
@@ -32,7 +59,8 @@ namespace {
 // The title, the domain, the grid and the time stepping.
 void declare_domain_time(Params& p) {
   p.add_string("title", "granflow case",
-               "One line saying what this case is; copied to the output.");
+               "One line saying what this case is; copied to the output.", printable_rule,
+               "one line of printable text (no control characters)");
 
   p.add_real("domain.Lx", "m", 0.8, Range::gt(0),
              "Domain length: Omega = (0, Lx) x (0, Ly); x = 0 is the back wall.");
@@ -371,11 +399,13 @@ void declare_solver(Params& p) {
              "summary.json: visc_polish_its_total, what the closing solves had to add.");
   p.add_string("solver.petsc_options", "",
                "Extra PETSc options, e.g. \"-pres_pc_type gamg\"; applied before the command "
-               "line's, which therefore win.");
+               "line's, which therefore win.",
+               printable_rule, "one line of printable text (no control characters)");
 
   Params probe;
   probe.add_string("name", std::nullopt, "Probe name, unique; used in output file names.",
-                   probe_name_rule, "[A-Za-z0-9_-]+");
+                   probe_name_rule,
+                   "[A-Za-z0-9_-]+, at most " + std::to_string(kMaxProbeName) + " characters");
   probe.add_real("x0", "m", std::nullopt, Range::any(), "Segment start, x.");
   probe.add_real("y0", "m", std::nullopt, Range::any(), "Segment start, y.");
   probe.add_real("x1", "m", std::nullopt, Range::any(), "Segment end, x.");

@@ -1,9 +1,12 @@
 #include "sim/Simulation.hpp"
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <memory>
 
 #include "core/Error.hpp"
@@ -37,6 +40,41 @@ std::string hex(double v) {
   char b[40];
   std::snprintf(b, sizeof b, "%a", v);
   return b;
+}
+
+// The first time of the schedule k interval (k = 1, 2, ...) after t + tiny. Computed, not
+// stepped to: a loop adding the interval until it passes t never ends when the interval is
+// below t's resolution (1e-300, or t = 1e308), and would take 1e300 turns if it did.
+double next_on_schedule(double t, double interval, double tiny) {
+  if (!(interval > 0)) return std::numeric_limits<double>::infinity();
+  const double k = std::floor((t + tiny) / interval) + 1;
+  const double next = k * interval;
+  return next > t + tiny ? next : (k + 1) * interval;  // the division's round-off
+}
+
+// k times `interval` as the decimal number the user wrote it is a multiple of: the interval's
+// shortest decimal form (0.1 -> 1e-1) times k, correctly rounded (3 x 0.1 gives 0.3, not the
+// product 0.30000000000000004). The product where the decimal form is long (1/3).
+double decimal_multiple(long long k, double interval) {
+  char buf[40];
+  const auto r = std::to_chars(buf, buf + sizeof buf, interval, std::chars_format::scientific);
+  const std::string s(buf, r.ptr);  // "d.ddde[+-]x"
+  const auto e = s.find('e');
+  std::string digits;
+  for (std::size_t i = 0; i < e; ++i)
+    if (s[i] != '.') digits += s[i];
+  if (r.ec != std::errc() || e == std::string::npos || digits.size() > 15 || k < 0)
+    return static_cast<double>(k) * interval;
+  const int exp10 = std::atoi(s.c_str() + e + 1) - static_cast<int>(digits.size()) + 1;
+  unsigned __int128 m = static_cast<unsigned __int128>(std::stoull(digits)) *
+                        static_cast<unsigned __int128>(k);
+  std::string text;
+  do {
+    text.insert(text.begin(), static_cast<char>('0' + static_cast<int>(m % 10)));
+    m /= 10;
+  } while (m > 0);
+  text += "e" + std::to_string(exp10);
+  return std::strtod(text.c_str(), nullptr);
 }
 
 // The prognostic fields, in checkpoint order (their names are checked on loading).
@@ -211,6 +249,13 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
   s_.dt = h.get_double("dt");
   s_.dt_old = h.get_double("dt_old");
   s_.step = h.get_int("step");
+  // The header checksum catches an edit; these catch a header written from a broken state.
+  if (!(std::isfinite(t) && t >= 0) || !(std::isfinite(s_.dt) && s_.dt >= 0) ||
+      !(std::isfinite(s_.dt_old) && s_.dt_old >= 0) || s_.step < 0)
+    throw io::IoError(src + ": t = " + num(t) + " s, dt = " + num(s_.dt) + " s, dt_old = " +
+                      num(s_.dt_old) + " s, step " + std::to_string(s_.step) +
+                      ": not a state to continue from (each must be finite and >= 0): corrupt "
+                      "checkpoint");
   counters::restore(counters::loop_counters(), h, lp_);
   counters::restore(counters::step_counters(), h, lp_.last);
   ++lp_.restarts;
@@ -288,15 +333,23 @@ void Simulation::write_diagnostics() {
   const auto wc = stepper_.wall_contact(s_);
   const auto &stick = wc.stick_m, &slide = wc.slide_m;
   const StepStats& last = lp_.last;
-  const auto col = out_->collapse.sample(s_.t, s_.phi, s_.vel, s_.p);
-  out_->csv.row({s_.t, s_.dt, static_cast<double>(s_.step), vol, vchange,
-                 diag::max_speed(g_, s_.vel), gu[0], gu[1], ke, div,
-                 static_cast<double>(last.visc_its), static_cast<double>(last.pres_its),
-                 static_cast<double>(last.fp_iters), last.fp_change, stick[0], slide[0], stick[2],
-                 slide[2], wc.normal_N[0], wc.friction_N[0], wc.normal_N[2], wc.friction_N[2],
-                 col.front_x, col.backwall_h, col.max_p_granular, col.max_speed_granular,
-                 lp_.vol_step_max, pe, lp_.diss_viscous, lp_.diss_plastic, lp_.diss_friction,
-                 residual});
+  // The time written: the scheduled one when the step landed on it within round-off.
+  const double t_out = output_time();
+  const auto col = out_->collapse.sample(s_.t, s_.phi, s_.vel, s_.p, t_out);
+  const double speed = diag::max_speed(g_, s_.vel);
+  // Rank 0 writes; a failure there must stop every rank, after the collective calls below.
+  std::string err;
+  try {
+    out_->csv.row({t_out, s_.dt, static_cast<double>(s_.step), vol, vchange, speed, gu[0], gu[1],
+                   ke, div, static_cast<double>(last.visc_its),
+                   static_cast<double>(last.pres_its), static_cast<double>(last.fp_iters),
+                   last.fp_change, stick[0], slide[0], stick[2], slide[2], wc.normal_N[0],
+                   wc.friction_N[0], wc.normal_N[2], wc.friction_N[2], col.front_x,
+                   col.backwall_h, col.max_p_granular, col.max_speed_granular, lp_.vol_step_max,
+                   pe, lp_.diss_viscous, lp_.diss_plastic, lp_.diss_friction, residual});
+  } catch (const io::IoError& e) {
+    err = e.what();
+  }
   lp_.vol_step_max = 0;
   // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
   io::NamedCellFields extra;
@@ -305,7 +358,8 @@ void Simulation::write_diagnostics() {
     extra = {{"D_norm", out_->dnorm}, {"S_norm", out_->snorm}};
   }
   if (out_->probes.samples("kappa")) extra.emplace_back("kappa", stepper_.kappa());
-  out_->probes.write(s_.t, s_.phi, s_.rho, s_.vel, s_.p, s_.eta, extra);
+  out_->probes.write(t_out, s_.phi, s_.rho, s_.vel, s_.p, s_.eta, extra);
+  io::raise_on_all_ranks(g_.comm(), err);
   lp_.volume_change_pct = vchange;
   // Mass conservation is not exact with a level set: a drift beyond the threshold is a
   // warning (counted in summary.json), said once.
@@ -398,7 +452,11 @@ void Simulation::fail(const std::string& what) {
   if (last_ckpt_step_ >= 0)
     msg += ". The last good checkpoint (t = " + num(last_ckpt_t_) + " s, step " +
            std::to_string(last_ckpt_step_) + ") is kept in " + rc_.out_dir +
-           "/checkpoint: continue from it with `granflow run --restart " + rc_.out_dir +
+           "/checkpoint" +
+           (unsane_since_t_ >= 0 ? " (none was written from t = " + num(unsane_since_t_) +
+                                       " s on: the state was not sane)"
+                                 : "") +
+           ": continue from it with `granflow run --restart " + rc_.out_dir +
            "` and a smaller step (--set time.cfl=... or time.dt=...)";
   else
     msg += ". No checkpoint was written before the failure (output.checkpoint_interval_steps, "
@@ -429,6 +487,19 @@ void Simulation::equilibrate() {
     const double eps = stepper_.traits().eps;
     const auto [n, speed] = stepper_.equilibrate(
         s_, dt0, rc_.stress_max_steps, rc_.stress_tol, [&, k = 0](const State& st) mutable {
+          // A stop signal ends the pseudo-steps (up to initial.stress_max_steps): their state
+          // is no state to continue from, so no checkpoint; summary.json says so.
+          int sig = signal::stop_signal();
+          MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPI_INT, MPI_MAX, g_.comm());
+          if (sig) {
+            const std::string msg =
+                std::string("stopped by ") + signal::name(sig) +
+                " during the initial stress equilibrium (initial.stress = \"equilibrium\", "
+                "pseudo-step " + std::to_string(k) + "): no checkpoint (the equilibrium was not "
+                "reached, there is no state to continue from); run the case again with --overwrite";
+            write_summary("interrupted", msg);
+            throw Interrupted(msg);
+          }
           const double v = diag::max_granular_speed(g_, st.vel, st.phi, eps);
           if (++k % 50 == 0 && g_.rank() == 0)
             log::message("granflow: initial stress: pseudo-step " + std::to_string(k) +
@@ -529,49 +600,79 @@ double Simulation::advance(double dt) {
   return sp.speed;
 }
 
+double Simulation::tiny() const { return 1e-12 * std::max(1.0, rc_.t_end); }
+
+double Simulation::output_time() const {
+  // Only the printed value: the step times (and so the physics) are the loop's own.
+  const double t = s_.t, eps = tiny();
+  if (std::abs(t - rc_.t_end) <= eps) return rc_.t_end;
+  if (!(rc_.output_interval > 0)) return t;
+  const double k = std::round(t / rc_.output_interval);
+  if (!(k >= 0 && k < 9e18)) return t;
+  const double on = decimal_multiple(static_cast<long long>(k), rc_.output_interval);
+  return std::abs(t - on) <= eps ? on : t;
+}
+
 void Simulation::scheduled_output(bool at_end) {
-  const double tiny = 1e-12 * std::max(1.0, rc_.t_end);
-  if (s_.t >= lp_.next_out - tiny || at_end) {
+  const double eps = tiny();
+  if (s_.t >= lp_.next_out - eps || at_end) {
     write_diagnostics();
-    while (lp_.next_out <= s_.t + tiny) lp_.next_out += rc_.output_interval;
+    if (lp_.next_out <= s_.t + eps)
+      lp_.next_out = next_on_schedule(s_.t, rc_.output_interval, eps);
   }
-  if (rc_.vtk_interval > 0 && (s_.t >= lp_.next_vtk - tiny || at_end)) {
+  if (rc_.vtk_interval > 0 && (s_.t >= lp_.next_vtk - eps || at_end)) {
     write_vtk();
-    while (lp_.next_vtk <= s_.t + tiny) lp_.next_vtk += rc_.vtk_interval;
+    if (lp_.next_vtk <= s_.t + eps) lp_.next_vtk = next_on_schedule(s_.t, rc_.vtk_interval, eps);
   }
 }
 
+void Simulation::stop_if_signalled(bool diag_written) {
+  int sig = signal::stop_signal();  // per rank: all ranks act on the same decision
+  MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPI_INT, MPI_MAX, g_.comm());
+  if (!sig) return;
+  const std::string name = signal::name(sig);
+  save_checkpoint(name);
+  // The checkpoint recorded the files' sizes before this extra row: a restart drops it.
+  if (!diag_written) write_diagnostics();
+  const std::string msg = "stopped by " + name + " at " + when() + "; checkpoint written to " +
+                          rc_.out_dir + "/checkpoint. Continue with: granflow run --restart " +
+                          rc_.out_dir;
+  write_summary("interrupted", msg);
+  throw Interrupted(msg);
+}
+
 void Simulation::checkpoint_if_due(double now, double& last_ckpt_wall, bool diag_written) {
-  // The signal flag and the wall clock are per rank: all ranks act on the same decision (one
-  // reduction per step).
+  stop_if_signalled(diag_written);
+  // The wall clock is per rank: rank 0 decides for all.
   const bool root = g_.rank() == 0;
-  int flags[2] = {signal::stop_signal(),
-                  root && rc_.checkpoint_wall_s > 0 && now - last_ckpt_wall >= rc_.checkpoint_wall_s};
-  MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, g_.comm());
-  if (flags[0]) {
-    const std::string sig = signal::name(flags[0]);
-    save_checkpoint(sig);
-    // The checkpoint recorded the files' sizes before this extra row: a restart drops it.
-    if (!diag_written) write_diagnostics();
-    const std::string msg = "stopped by " + sig + " at " + when() + "; checkpoint written to " +
-                            rc_.out_dir + "/checkpoint. Continue with: granflow run --restart " +
-                            rc_.out_dir;
-    write_summary("interrupted", msg);
-    throw Interrupted(msg);
-  }
+  int by_wall = root && rc_.checkpoint_wall_s > 0 && now - last_ckpt_wall >= rc_.checkpoint_wall_s;
+  MPI_Bcast(&by_wall, 1, MPI_INT, 0, g_.comm());
   const bool by_steps =
       rc_.checkpoint_interval_steps > 0 && s_.step % rc_.checkpoint_interval_steps == 0;
-  if (by_steps || flags[1]) {
-    save_checkpoint(by_steps ? "every " + std::to_string(rc_.checkpoint_interval_steps) + " steps"
-                             : "wall clock");
-    last_ckpt_wall = wall_now();
+  if (!by_steps && !by_wall) return;
+  // Not a state to continue from (see the header): the last checkpoint stays the last good one.
+  if (!unsane_.empty()) {
+    if (unsane_since_t_ < 0) {
+      unsane_since_t_ = s_.t;
+      if (root)
+        log::message("granflow: warning: no checkpoint at " + when() + ": the state is not "
+                     "sane, " + unsane_ + " (a blow-up may have begun); the last checkpoint" +
+                     (last_ckpt_step_ >= 0 ? " (t = " + num(last_ckpt_t_) + " s, step " +
+                                                 std::to_string(last_ckpt_step_) + ")"
+                                           : "") +
+                     " is kept, and the next ones are skipped while the state is not sane");
+    }
+    return;
   }
+  save_checkpoint(by_steps ? "every " + std::to_string(rc_.checkpoint_interval_steps) + " steps"
+                           : "wall clock");
+  last_ckpt_wall = wall_now();
+  unsane_since_t_ = -1;  // sane again: the next skip is said again
 }
 
 RunSummary Simulation::run() {
   namespace fs = std::filesystem;
-  const bool root = g_.rank() == 0;
-  if (root) fs::create_directories(rc_.out_dir);
+  if (g_.rank() == 0) fs::create_directories(rc_.out_dir);
   MPI_Barrier(g_.comm());
   seg_t0_ = wall_now();
   open_outputs();
@@ -580,14 +681,33 @@ RunSummary Simulation::run() {
     ~Close() { o.reset(); }
   } close{out_};
 
+  try {
+    run_loop();
+  } catch (const io::IoError& e) {
+    // Results were lost: summary.json must not keep saying "running" or "completed". It may
+    // not be writable either (the folder removed): the error is what matters.
+    try {
+      write_summary("failed", std::string("file error: ") + e.what());
+    } catch (const io::IoError&) {
+    }
+    throw;
+  }
+  return summary_;
+}
+
+void Simulation::run_loop() {
+  const bool root = g_.rank() == 0;
   if (!restarted_)
     start();
   else
     stepper_.resume(s_);
+  // A signal during the start-up (the handler is installed before PetscInitialize).
+  stop_if_signalled(true);
   const double t0 = seg_t0_;
   double last_progress = t0, last_ckpt_wall = t0;
   const long long step0 = s_.step;
-  const double tiny = 1e-12 * std::max(1.0, rc_.t_end);
+  const double tiny = this->tiny();
+  const double h = std::min(g_.hx(), g_.hy());
   double umax = diag::max_speed(g_, s_.vel);
   while (s_.t < rc_.t_end - tiny && (rc_.max_steps <= 0 || s_.step - step0 < rc_.max_steps)) {
     const double dt = choose_dt(umax, lp_.dt_prev);
@@ -596,7 +716,27 @@ RunSummary Simulation::run() {
            " s) at " + when() + ", max |u| = " + num(umax) +
            " m/s: the flow is blowing up; try a smaller time.cfl or time.dt_max");
     // 1. The step and its failure checks.
+    const double u_before = umax;
     umax = advance(dt);
+    // The state's sanity (see the header).
+    unsane_.clear();
+    constexpr double kSaneSpeedFactor = 10;
+    if (rc_.speed_scale > 0) {
+      if (!(umax <= kSaneSpeedFactor * rc_.speed_scale))
+        unsane_ = "its max|u| = " + num(umax) + " m/s is more than " + num(kSaneSpeedFactor) +
+                  " times the case's velocity scale U = " + num(rc_.speed_scale) + " m/s";
+    } else {
+      const double cfl = std::max(u_before * dt, umax * choose_dt(umax, dt)) / h;
+      if (!(cfl <= 1 + 1e-9))  // 1, and the round-off of (cfl h / u) u / h at cfl = 1
+        unsane_ = "the CFL number max|u| dt / h of its steps is " + num(cfl) + " > 1";
+    }
+    // The solvers have now read every PETSc option they use: name those nobody read.
+    if (s_.step == step0 + 1 && root)
+      for (const auto& o : unused_petsc_options())
+        log::message("granflow: warning: PETSc option " + o +
+                     " was not used by the first step: misspelled, or for a solver or "
+                     "preconditioner this run does not use (the solvers' prefixes are -pres_ "
+                     "and -visc_)");
     // 2. Scheduled output.
     const bool at_end = s_.t >= rc_.t_end - tiny;
     const bool diag_now = s_.t >= lp_.next_out - tiny || at_end;
@@ -618,7 +758,6 @@ RunSummary Simulation::run() {
   // The end (t_end or time.max_steps): a checkpoint, from which a longer run can continue.
   if (s_.step != last_ckpt_step_) save_checkpoint("end of run");
   write_summary(s_.t >= rc_.t_end - tiny ? "completed" : "stopped at time.max_steps", "");
-  return summary_;
 }
 
 }  // namespace gf

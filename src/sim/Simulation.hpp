@@ -8,10 +8,26 @@
 //      (RunError, after writing the diagnostics and summary.json; no checkpoint of the bad
 //      state, so the last checkpoint stays the last good one);
 //   2. scheduled output: diagnostics.csv and probes every output_interval, VTK every
-//      vtk_interval;
+//      vtk_interval (the next time computed as a multiple of the interval, never stepped to;
+//      a time within round-off of the schedule is written as the scheduled time);
 //   3. checkpoint if due (every checkpoint_interval_steps steps, every checkpoint_wall_s of
-//      wall clock) or on SIGINT/SIGTERM (then Interrupted is thrown);
+//      wall clock) and the state is sane (below), or on SIGINT/SIGTERM (then Interrupted is
+//      thrown);
 //   4. the progress line (stderr and granflow.log).
+// A sane state: its max|u| at most kSaneSpeedFactor (10) times the case's velocity scale U
+// (the report's, e.g. sqrt(|g| H)); without a scale (U = 0), the step into it and the step
+// out of it within the convective stability limit, max|u| dt / h <= 1. No flow of the bundled
+// cases comes near (the water dam break, the fastest, reaches 3.7 U where it splashes on the
+// wall); a blow-up passes it within a step or two (case A at n = 64 with a fixed dt = 0.01 s:
+// 2.6 U, then 23 U, then 2700 U). A periodic checkpoint of a state that is not sane is not
+// written (said once in the log), so that the checkpoint kept when the run then fails is from
+// before the blow-up began: a restart from it with a smaller step continues.
+// A SIGINT/SIGTERM during the start-up (the initial pressure, the initial stress) stops the
+// run there: after the initial state, with a checkpoint of it; during the initial stress
+// equilibrium, without (its pseudo-steps are not a state to continue from).
+// A failed write of any output (diagnostics, probes, collapse files, VTK, checkpoint, summary;
+// also a file deleted while the run writes it) throws IoError on every rank, after trying to
+// write summary.json with the status "failed".
 // A restart (restart() before run()) restores the state and every loop variable from the
 // checkpoint and cuts the output files back to their size at the checkpoint, so a restarted
 // run writes exactly the rows and files the uninterrupted run writes after that point.
@@ -40,6 +56,7 @@ struct RunConfig {
   double dt_max = 1e-3;        // s
   double dt_min = 1e-9;        // s: below this the run stops as failed
   double max_speed = 100;      // m/s: above this anywhere the run stops as blown up
+  double speed_scale = 0;      // m/s, the case's velocity scale U (setup/Report.hpp), 0 = none
   long long max_steps = 0;     // 0 = unlimited (steps of this run, not counting a restart's past)
   double output_interval = 0.01;    // s
   double vtk_interval = 0.05;       // s, 0 = none
@@ -144,7 +161,16 @@ class Simulation {
   double last_ckpt_t_ = 0;
   double seg_t0_ = 0;  // wall clock at the start of run(), s
 
+  // Sanity of the state (see the header): why the state after the last step is not sane
+  // ("" if it is); the first time a periodic checkpoint was skipped (-1: none).
+  std::string unsane_;
+  double unsane_since_t_ = -1;
+
   // The stages of run().
+  double tiny() const;          // s: the time loop's tolerance, 1e-12 max(1, t_end)
+  double output_time() const;   // s: the time written for the current state
+  void stop_if_signalled(bool diag_written);  // collective: a checkpoint, then Interrupted
+  void run_loop();                   // run() without its files' opening and closing
   void open_outputs();
   void start();                         // t = 0: the model's start, its first outputs
   void equilibrate();                   // initial.stress = "equilibrium"

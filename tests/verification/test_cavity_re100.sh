@@ -11,7 +11,7 @@
 # u_vertical_centerline (x = 0.5) and v_horizontal_centerline (y = 0.5):
 #   - steady: max |change| between the last two output times < 1e-4 m/s;
 #   - the probe values, interpolated linearly to Ghia's stations (Re = 100 column of
-#     ../shared/reference/ghia1982_*.csv), differ from Ghia by < 0.02 m/s (2 % of the lid
+#     tests/data/ghia1982_*.csv), differ from Ghia by < 0.02 m/s (2 % of the lid
 #     speed) at every interior station. The wall stations (0 and 1) are boundary values; the
 #     probes hold the first interior sample there (no extrapolation), so they are printed but
 #     not checked.
@@ -21,7 +21,7 @@
 set -euo pipefail
 bin="$1"; src="$2"
 py=/usr/bin/python3
-ref="$(dirname "$src")/shared/reference"
+ref="$src/tests/data"  # Ghia et al. 1982 tables, with their source in each file
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 for f in ghia1982_u_vertical_centerline.csv ghia1982_v_horizontal_centerline.csv; do

@@ -65,7 +65,7 @@ std::string load_error(const std::string& path, const std::vector<std::string>& 
 
 struct BadCase {
   const char* name;
-  const char* toml;
+  std::string toml;
   std::vector<std::string> overrides;
   std::vector<std::string> expect;  // substrings of the error message
 };
@@ -299,6 +299,32 @@ std::vector<BadCase> bad_cases() {
        "",
        {"rheology.yield=dp", "rheology.viscosity=mu_i", "rheology.d=5e-4", "rheology.eta_min=2"},
        {"--set: rheology.eta_min = 2: must be < rheology.eta_max = 1.2 (Pa s)"}},
+      // Issue 20's holes, at the level of the case.
+      {"quoted_root_key_beside_its_section",
+       "\"grid.n\" = 32\n[grid]\nn = 16\n",
+       {},
+       {": given twice (also at", "a quoted key \"grid.n\" is the same parameter as n"}},
+      {"number_out_of_range_by_set", "", {"domain.Lx=1e999"},
+       {"--set: domain.Lx = 1e999: out of range: not representable as a double"}},
+      {"escape_in_title", "title = \"a\\u001b[31mred\"\n", {},
+       {"title = \"a\\u001B[31mred\"", "control character 0x1B (ESC)"}},
+      {"carriage_return_in_title", "title = \"a\\rb\"\n", {}, {"control character 0x0D (CR)"}},
+      {"probe_name_too_long",
+       "[[probe]]\nname = \"" + std::string(300, 'p') +
+           "\"\nx0 = 0\ny0 = 0.01\nx1 = 0.8\ny1 = 0.01\n",
+       {},
+       {"is 300 characters long: at most 64"}},
+      {"fixed_step_of_zero", "", {"time.dt_mode=fixed", "time.dt=0"},
+       {"time.dt = 0: time.dt_mode = \"fixed\" needs the step: must be > 0 (s)"}},
+      {"fixed_step_far_beyond_stability", "", {"time.dt_mode=fixed", "time.dt=0.5"},
+       {"time.dt = 0.5: with time.dt_mode = \"fixed\" the step is", "times the stability limit",
+        "CFL number U dt / h ="}},
+      {"output_interval_absurd", "", {"output.interval=1e-300"},
+       {"output.interval = 1e-300 with", "diagnostics outputs, more than 1e+07"}},
+      {"vtk_interval_absurd", "", {"output.vtk_interval=1e-300"},
+       {"output.vtk_interval = 1e-300 with", "VTK files, more than 1e+05"}},
+      {"t_end_absurd", "", {"time.t_end=1e308"},
+       {"time.t_end = 1e+308: time.t_end / time.dt_max", "steps at least", "more than 1e+09"}},
   };
 }
 
@@ -321,6 +347,22 @@ TEST(CaseFile, MissingFileIsReportedWithItsName) {
   const std::string path = (scratch() / "no_such_case.toml").string();
   const std::string msg = load_error(path);
   EXPECT_NE(msg.find(path + ": cannot open the case file"), std::string::npos) << msg;
+}
+
+TEST(CaseFile, AFolderIsNotAnEmptyCase) {
+  const fs::path dir = scratch() / "a_folder.toml";
+  fs::create_directories(dir);
+  const std::string msg = load_error(dir.string());
+  EXPECT_NE(msg.find(dir.string() + ": is a folder, not a case file"), std::string::npos) << msg;
+}
+
+TEST(CaseFile, FixedStepBeyondStabilityIsWarned) {
+  // Case A's defaults at n = 64: U = sqrt(9.81 x 0.14) = 1.17 m/s, h = 3.125 mm: CFL 3.75.
+  const auto c = load_case(write_file("fixed_dt.toml", ""), {"time.dt_mode=fixed", "time.dt=0.01"});
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_NE(c.warnings[0].find("beyond the stability limit 0.002667 s: CFL number U dt / h = 3.75"),
+            std::string::npos)
+      << c.warnings[0];
 }
 
 TEST(CaseFile, MissingFileStillChecksOverrides) {
@@ -566,7 +608,8 @@ TEST(CaseFile, OverridesReplaceFileValuesAndTakeBareStrings) {
   // The override replaces the bad file value, so the file's -5 is never validated.
   const auto c = load_case(
       path, {"phase.granular.rho=2000", "initial.shape=layer", "title=a bare title",
-             "physics.gravity=[1, -9]", "levelset.enabled=true", "time.dt_mode=\"fixed\""});
+             "physics.gravity=[1, -9]", "levelset.enabled=true", "time.dt_mode=\"fixed\"",
+             "time.dt=1e-4"});  // a fixed step needs its dt (> 0)
   EXPECT_DOUBLE_EQ(c.granular.rho, 2000);
   EXPECT_EQ(c.initial.shape, gf::CaseConfig::Shape::Layer);
   EXPECT_EQ(c.title, "a bare title");
