@@ -36,8 +36,9 @@ def load(root):
     for name in sorted(os.listdir(root)):
         m = re.fullmatch(r"(clsvof|level_set)_(\d+)", name)
         path = os.path.join(root, name)
-        if not m or not os.path.isfile(os.path.join(path, "diagnostics.csv")):
-            continue
+        if not m or not os.path.isfile(os.path.join(path, "diagnostics.csv")) or \
+                not os.path.isfile(os.path.join(path, "summary.json")):
+            continue  # not a run, or one still going (summary.json is written at the end)
         d = gr.read_csv(os.path.join(path, "diagnostics.csv"))
         with open(os.path.join(path, "summary.json")) as f:
             summ = json.load(f)

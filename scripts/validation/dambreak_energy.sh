@@ -33,7 +33,8 @@ for m in $methods; do
     # grid.n counts the cells over Ly = 3a.
     echo "run  $out: interface.method = $m, $k cells per a"
     start=$SECONDS
-    "$gf" run "$case" --out "$out" --set "grid.n=$((3 * k))" --set "interface.method=$m" \
+    nice "$gf" run "$case" --out "$out" --overwrite --set "grid.n=$((3 * k))" \
+      --set "interface.method=$m" \
       --set output.progress_interval=60 > "$out.log" 2>&1
     echo "     exit $?, $((SECONDS - start)) s"
   done
