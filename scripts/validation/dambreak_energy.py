@@ -4,7 +4,7 @@
 usage: dambreak_energy.py RUN_ROOT DOCS_DIR
 
 Reads RUN_ROOT/<method>_<cells per a>/ (diagnostics.csv, summary.json) of the water column of
-cases/verify/dambreak_energy.toml and writes DOCS_DIR/figures/dambreak_front.png (the front
+cases/verify/dambreak_energy.toml and writes DOCS_DIR/figures/dambreak_energy_front.png (the front
 Z(T) = x_front / a against T = t sqrt(2 g / a) for every run, with the ideal Ritter front
 Z = 1 + 2T), DOCS_DIR/figures/dambreak_energy.png (the energy budget of each method on its finest
 grid: kinetic energy, released potential energy, viscous dissipation and the residual) and
@@ -93,7 +93,7 @@ def main(argv):
     ax.legend(fontsize=7, ncol=2)
     figstyle.title(ax, "Water column of Martin & Moyce's geometry (a = 0.05715 m, height 2a): "
                    "the front against time")
-    out.save(fig, "dambreak_front.png")
+    out.save(fig, "dambreak_energy_front.png")
 
     methods = sorted({m for m, _ in runs})
     fig, axes = plt.subplots(1, len(methods), figsize=(5.2 * len(methods), 3.8), squeeze=False)
@@ -142,7 +142,7 @@ def main(argv):
                 " | ".join("" if math.isnan(z) else f"{z:.3f}" for z in q["Z"]) +
                 f" | {change} | {q['residual']:+.4f} | {s.get('steps', '')} | "
                 f"{s.get('wall_s', 0):.0f} |")
-    lines += ["", "![front](figures/dambreak_front.png)", "",
+    lines += ["", "![front](figures/dambreak_energy_front.png)", "",
               "![energy](figures/dambreak_energy.png)", ""]
     with open(os.path.join(docs, "dambreak_energy.md"), "w") as f:
         f.write("\n".join(lines))

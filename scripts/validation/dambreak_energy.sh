@@ -3,7 +3,7 @@
 # high, in a 10a x 3a channel, to T = t sqrt(2 g / a) = 4) at 16, 32, 64 and 128 cells per a,
 # with each interface method (issue 18: no energy from nothing, the front Z(T) converging), one
 # run after the other on one rank, into runs/dambreak_energy/<method>_<cells per a>/; then
-# scripts/validation/dambreak_energy.py writes docs/figures/dambreak_front.png,
+# scripts/validation/dambreak_energy.py writes docs/figures/dambreak_energy_front.png,
 # docs/figures/dambreak_energy.png and the table of docs/INTERFACE.md from whatever runs exist.
 #
 #   scripts/validation/dambreak_energy.sh                 # both methods, 16 to 128 cells per a

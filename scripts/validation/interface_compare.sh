@@ -3,7 +3,8 @@
 # mu(I)), case B, the sand column on a 20 deg plane (cases/incline_column.toml) and the 20 deg
 # pile with the default settings (cases/verify/pile_default.toml), with interface.method =
 # "clsvof" (the default) and "level_set" (the paper's scheme), one run after the other on one
-# rank (nice), into runs/interface/<name>_<method>/; then scripts/validation/interface_compare.py
+# rank (nice), into runs/interface/<name>_<method>/ (b_n64_Lx2: case B in a 2 m long channel, for
+# a front that reaches case B's far wall at x = 1.38 m); then scripts/validation/interface_compare.py
 # writes docs/interface_compare.md from whatever runs exist.
 #
 #   scripts/validation/interface_compare.sh                       # the runs below, in order
@@ -24,6 +25,7 @@ RUNS=(
   "a_n32|cases/ar07_rough.toml|--set grid.n=32 $novtk"
   "a_n64|cases/ar07_rough.toml|--set grid.n=64 $novtk"
   "b_n64|cases/ar2_smooth.toml|--set grid.n=64 $novtk"
+  "b_n64_Lx2|cases/ar2_smooth.toml|--set grid.n=64 --set domain.Lx=2.0 $novtk"
   "a_mui_n64|cases/ar07_rough_mui.toml|--set grid.n=64 $novtk"
   "incline_n64|cases/incline_column.toml|--set grid.n=64 $novtk"
   "pile_n32|cases/verify/pile_default.toml|--set grid.n=32 --set output.vtk_interval=1.0"
