@@ -133,10 +133,12 @@ def main(argv):
             continue
         d1 = R[1] - R[0] if None not in R[:2] else None
         d2 = R[2] - R[1] if None not in R[1:] else None
-        p = (math.log2(abs(d1 / d2)) if d1 is not None and d2 is not None and d2 != 0
+        p = (math.log2(d1 / d2) if d1 is not None and d2 is not None and d1 * d2 > 0
              else None)
+        ptxt = ("not monotone: no order" if d1 is not None and d2 is not None and d1 * d2 <= 0
+                else f(p, '.2f'))
         L.append(f"| {m} | {f(R[0], '.4f')} | {f(R[1], '.4f')} | {f(R[2], '.4f')} | "
-                 f"{f(d1, '+.4f')} | {f(d2, '+.4f')} | {f(p, '.2f')} |")
+                 f"{f(d1, '+.4f')} | {f(d2, '+.4f')} | {ptxt} |")
     with open(argv[2], "w") as fh:
         fh.write("\n".join(L) + "\n")
     print(f"interface_compare.py: wrote {argv[2]} ({len(runs)} runs)")
