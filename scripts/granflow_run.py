@@ -95,7 +95,9 @@ DIAGNOSTICS_UNITS = {
     "fp_change": "1", "left_stick_m": "m", "left_slide_m": "m", "bottom_stick_m": "m",
     "bottom_slide_m": "m", "left_normal_N": "N/m", "left_friction_N": "N/m",
     "bottom_normal_N": "N/m", "bottom_friction_N": "N/m", "front_x": "m", "backwall_h": "m",
-    "max_p_granular": "Pa", "max_speed_granular": "m/s",
+    "max_p_granular": "Pa", "max_speed_granular": "m/s", "volume_step_change": "1",
+    "potential_energy": "J/m", "dissipated_viscous": "J/m", "dissipated_plastic": "J/m",
+    "dissipated_friction": "J/m", "energy_residual": "J/m",
 }
 PROFILES_UNITS = {"t": "s", "x": "m", "h": "m"}
 STRUCTURE_UNITS = {"t": "s", "cutoff": "1", "x": "m", "h": "m", "h_deposit": "m", "h_l": "m"}
@@ -109,6 +111,7 @@ DEPOSIT_UNITS = {
 FIELD_UNITS = {
     "phi": "m", "rho": "kg/m³", "u": "m/s", "v": "m/s", "speed": "m/s", "p": "Pa",
     "eta": "Pa s", "D_norm": "1/s", "S_norm": "1", "yielded": "1", "kappa": "Pa",
+    "volume_fraction": "1",
 }
 PROBE_UNITS = {"t": "s", "x": "m", "y": "m", **FIELD_UNITS}
 FILE_UNITS = {"diagnostics.csv": DIAGNOSTICS_UNITS, "profiles.csv": PROFILES_UNITS,

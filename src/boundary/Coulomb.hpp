@@ -54,6 +54,16 @@ class CoulombWalls {
   const Boundaries& conditions() const { return bc_; }
   // The level set of the current step (global Vec): which wall faces are granular.
   void set_phase(Vec phi);
+  // The normal load on a wall from the wall cells' own weight (interface.method = "clsvof"):
+  // -T_n on the wall = -T_n at the centre of the cell next to it plus the weight of the half
+  // cell between that centre and the wall, rho_c |g . n| h / 2 (rho: global dm_cell Vec of the
+  // step), instead of the linear extrapolation from the first two cells. With a sharp density
+  // a granular film thinner than a cell lies in the half cell below its centre: the centre's
+  // pressure carries half the film's weight, the extrapolation 3/4 of it (the second cell is
+  // air), and a film on a 20 degree plane with a 25.5 degree wall then slid (0.75 tan 25.5 =
+  // 0.358 < tan 20 = 0.364); the half cell's weight gives it its whole load. For a resolved
+  // layer at rest both are the hydrostatic load.
+  void set_wall_weight(Vec rho, const std::array<double, 2>& gravity);
 
   // The ghosted phi of set_phase, open for reading for the scope of the object (null if no
   // phase was set: then no face is a Coulomb face).
@@ -98,6 +108,9 @@ class CoulombWalls {
   bool have_phase_ = false;
   bool cached_ = false;
   Vec lwp_ = nullptr, lwk_ = nullptr, lwe_ = nullptr;  // cache_inputs
+  Vec lrho_ = nullptr;                         // set_wall_weight: ghosted rho
+  std::array<double, 2> grav_{0, 0};           // m/s^2
+  bool weight_ = false;
 };
 
 }  // namespace gf::boundary

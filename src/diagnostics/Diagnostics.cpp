@@ -129,6 +129,38 @@ std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec phi, do
   return {tot[0] / tot[2], tot[1] / tot[2]};
 }
 
+std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec fraction) {
+  const Box& b = g.box();
+  LocalVelocity v(g, vel);
+  const PetscScalar** w;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), fraction, &w));
+  double acc[3] = {0, 0, 0}, tot[3] = {0, 0, 0};
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      double uc, vc;
+      cell_centre_velocity(v, i, j, uc, vc);
+      acc[0] += w[j][i] * uc;
+      acc[1] += w[j][i] * vc;
+      acc[2] += w[j][i];
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), fraction, &w));
+  MPI_Allreduce(acc, tot, 3, MPI_DOUBLE, MPI_SUM, g.comm());
+  if (tot[2] <= 0) return {0.0, 0.0};
+  return {tot[0] / tot[2], tot[1] / tot[2]};
+}
+
+double potential_energy(const Grid& g, Vec rho, const std::array<double, 2>& gravity) {
+  const Box& b = g.box();
+  const PetscScalar** r;
+  GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), rho, &r));
+  double local = 0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i)
+      local -= r[j][i] * (gravity[0] * b.xc(i) + gravity[1] * b.yc(j));
+  GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), rho, &r));
+  return g.sum(local) * b.hx * b.hy;
+}
+
 namespace {
 // The lowest linear index j nx + i over the ranks of a local candidate (-1: none here).
 CellIndex lowest_cell(const Grid& g, long long local) {

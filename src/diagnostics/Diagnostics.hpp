@@ -53,6 +53,16 @@ double max_in_granular(const Grid& g, Vec field, Vec phi);
 // {0, 0} if there is no granular cell.
 std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec phi, double eps);
 
+// The same weighted by a granular volume fraction field (dm_cell, 0..1): the conserved c of
+// interface.method = "clsvof".
+std::array<double, 2> granular_mean_velocity(const Grid& g, Vec vel, Vec fraction);
+
+// Potential energy per metre of depth in the gravity field g, J/m:
+//   -sum_cells rho_{ij} (g_x x_i + g_y y_j) hx hy   (x_i, y_j the cell centres),
+// the energy that the kinetic energy and the dissipation of the energy budget are measured
+// against (diagnostics.csv potential_energy).
+double potential_energy(const Grid& g, Vec rho, const std::array<double, 2>& gravity);
+
 // A cell of the grid, for failure messages ("where"); i < 0 means none.
 struct CellIndex {
   PetscInt i = -1, j = -1;

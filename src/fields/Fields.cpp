@@ -25,6 +25,7 @@ Field& Field::operator=(Field&& o) noexcept {
 
 State::State(const Grid& g)
     : phi(g.dm_cell(), "phi"),
+      frac(g.dm_cell(), "volume_fraction"),
       vel(g.dm_vel(), "velocity"),
       vel_old(g.dm_vel(), "velocity_old"),
       p(g.dm_cell(), "p"),

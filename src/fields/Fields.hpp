@@ -28,6 +28,10 @@ struct State {
   explicit State(const Grid& g);
   // Prognostic: level set, velocity at t^n and t^{n-1}, pressure p^n, plastic tensor S^n.
   Field phi;      // dm_cell, m (signed distance; > 0 air, < 0 granular)
+  // dm_cell, the granular volume fraction of each cell, 0..1: with interface.method = "clsvof"
+  // the conserved field that carries the granular mass (vof/Vof.hpp), phi being rebuilt from it;
+  // unused (0) with the level set alone.
+  Field frac;
   Field vel;      // dm_vel, m/s, u^n (divergence free)
   Field vel_old;  // dm_vel, m/s, u^{n-1}
   Field p;        // dm_cell, Pa

@@ -58,7 +58,7 @@ Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol)
 
 Predictor::~Predictor() {
   for (Vec* v : {&wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_, &lp_, &lvel_,
-                 &lvel_old_})
+                 &lvel_old_, &ladv_, &lflux_, &lca_, &lcb_, &lcc_})
     VecDestroy(v);
   end_local();
   VecDestroy(&work_);
@@ -67,6 +67,7 @@ Predictor::~Predictor() {
 
 void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
   const Box& b = g_.box();
+  a0dt_ = a0dt;
   to_local(g_.dm_cell(), rho, lrho_);
   to_local(g_.dm_cell(), eta, leta_);
   to_local(g_.dm_cell(), eta_node, letan_);
@@ -205,7 +206,8 @@ void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoe
   fill_velocity_ghosts(g_, lvo);
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), conv_, &cv));
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), conv_old_, &cvo));
-  ops::convection(b, lv, cv);
+  // b0 = 0: the convection is already in vel (transport()).
+  if (c.b0 != 0.0) ops::convection(b, lv, cv);
   if (c.b1 != 0.0) ops::convection(b, lvo, cvo);
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lp_, &pp));
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lrho_, &r));
@@ -218,7 +220,8 @@ void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoe
       } else {
         const double rf = ops::rho_xface(r, i, j);
         const double hist = -(c.a1 * lv[j][i].u + c.a2 * lvo[j][i].u) / dt;
-        const double conv = c.b0 * cv[j][i].u + (c.b1 != 0.0 ? c.b1 * cvo[j][i].u : 0.0);
+        const double conv = (c.b0 != 0.0 ? c.b0 * cv[j][i].u : 0.0) +
+                            (c.b1 != 0.0 ? c.b1 * cvo[j][i].u : 0.0);
         out[j][i].u = rf * (hist - conv) - (pp[j][i] - pp[j][i - 1]) / b.hx + rf * grav[0] +
                       wr[j][i].u;
       }
@@ -227,7 +230,8 @@ void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoe
       } else {
         const double rf = ops::rho_yface(r, i, j);
         const double hist = -(c.a1 * lv[j][i].v + c.a2 * lvo[j][i].v) / dt;
-        const double conv = c.b0 * cv[j][i].v + (c.b1 != 0.0 ? c.b1 * cvo[j][i].v : 0.0);
+        const double conv = (c.b0 != 0.0 ? c.b0 * cv[j][i].v : 0.0) +
+                            (c.b1 != 0.0 ? c.b1 * cvo[j][i].v : 0.0);
         out[j][i].v = rf * (hist - conv) - (pp[j][i] - pp[j - 1][i]) / b.hy + rf * grav[1] +
                       wr[j][i].v;
       }
@@ -240,6 +244,64 @@ void Predictor::explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoe
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), conv_, &cv));
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_old_, &lvo));
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &lv));
+}
+
+void Predictor::transport(Vec adv, Vec vel, const MassSweeps& m, double dt, Vec u_star) {
+  const Box& b = g_.box();
+  if (!lflux_) {
+    GF_PETSC(DMCreateLocalVector(g_.dm_vel(), &lflux_));
+    GF_PETSC(DMCreateLocalVector(g_.dm_vel(), &ladv_));
+    for (Vec* v : {&lca_, &lcb_, &lcc_}) GF_PETSC(DMCreateLocalVector(g_.dm_cell(), v));
+  }
+  to_local(g_.dm_vel(), adv, ladv_);
+  to_local(g_.dm_vel(), vel, lvel_);
+  to_local(g_.dm_vel(), m.flux, lflux_);
+  to_local(g_.dm_cell(), m.c_start, lca_);
+  to_local(g_.dm_cell(), m.c_end, lcb_);
+  to_local(g_.dm_cell(), m.cc, lcc_);
+  Vel **lv, **la, **out;
+  const Vel** F;
+  const PetscScalar **a, **bb, **cc;
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), lvel_, &lv));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), ladv_, &la));
+  fill_velocity_ghosts(g_, lv);
+  fill_velocity_ghosts(g_, la);
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), lflux_, &F));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lca_, &a));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lcb_, &bb));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lcc_, &cc));
+  GF_PETSC(DMDAVecGetArray(g_.dm_vel(), u_star, &out));
+  ops::momentum_transport(b, dt, m.rho_air, m.rho_gran, la, a, bb, cc, F, lv, out);
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), u_star, &out));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lcc_, &cc));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lcb_, &bb));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lca_, &a));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), lflux_, &F));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), ladv_, &la));
+  GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), lvel_, &lv));
+}
+
+double Predictor::viscous_power(Vec vel, Vec rho) {
+  const Box& b = g_.box();
+  if (!work_) GF_PETSC(VecDuplicate(vel, &work_));
+  GF_PETSC(MatMult(A_, vel, work_));
+  PetscScalar uAu;
+  GF_PETSC(VecDot(vel, work_, &uAu));
+  // The mass term a0/dt rho_face u^2 of the same rows (wall rows carry u = 0).
+  to_local(g_.dm_cell(), rho, lrho_);
+  const PetscScalar** r;
+  const Vel** u;
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), lrho_, &r));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), vel, &u));
+  double mass = 0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      if (!b.wall_u(i)) mass += ops::rho_xface(r, i, j) * u[j][i].u * u[j][i].u;
+      if (j > 0) mass += ops::rho_yface(r, i, j) * u[j][i].v * u[j][i].v;
+    }
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), vel, &u));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
+  return (uAu - a0dt_ * g_.sum(mass)) * b.hx * b.hy;
 }
 
 int Predictor::solve(Vec rhs, Vec u_tilde) {

@@ -31,6 +31,18 @@ struct TimeCoeffs {
   double a0 = 1, a1 = -1, a2 = 0, b0 = 1, b1 = 0;
   // first = true: BDF1 and explicit Euler (no u^{n-1} yet).
   static TimeCoeffs make(double dt, double dt_old, bool first);
+  // The momentum transported with the mass fluxes (transport() below): rho^{n+1} (u~ - u*) / dt
+  // with u* the transported velocity, i.e. BDF1 with the convection already in u* (b0 = 0).
+  static TimeCoeffs transported() { return {1, -1, 0, 0, 0}; }
+};
+
+// What one direction-split volume-of-fluid step did (vof::Advector), for the momentum
+// transport that goes with it: the granular volume fluxes of its sweeps (dm_vel: .u of the x
+// sweep, .v of the y sweep, cell volumes), the volume fraction before and after the step and
+// Weymouth & Yue's c_c (dm_cell), and the two densities.
+struct MassSweeps {
+  Vec flux = nullptr, c_start = nullptr, c_end = nullptr, cc = nullptr;
+  double rho_air = 0, rho_gran = 0;  // kg/m^3
 };
 
 class Predictor {
@@ -50,6 +62,20 @@ class Predictor {
   // moving-wall terms. Result in rhs (global dm_vel Vec).
   void explicit_rhs(Vec vel, Vec vel_old, Vec p, Vec rho, const TimeCoeffs& c, double dt,
                     const std::array<double, 2>& gravity, Vec rhs);
+
+  // The momentum transport consistent with the mass transport (interface.method = "clsvof"):
+  // u* from u^n (vel) by ops::momentum_transport with the mass fluxes of m, which the face
+  // velocity adv carried (the velocity of the volume-fraction step), so that rho_f^{n+1} u* is
+  // the momentum rho_f^n u^n moved by the fluxes that moved rho_f^n to rho_f^{n+1}. explicit_rhs(u*, ..., TimeCoeffs::transported()) then gives the
+  // prediction rho^{n+1} (u~ - u*) / dt = ... of eq. 31 without a separate convection term.
+  void transport(Vec adv, Vec vel, const MassSweeps& m, double dt, Vec u_star);
+
+  // The power dissipated by the viscous stresses of the assembled operator (eq. 31's
+  // div(2 eta D(u)) with its wall terms: Navier slip, no slip) for the velocity vel, W per metre
+  // of depth: (u . A u - a0/dt sum rho_face u^2) hx hy, i.e. sum 2 eta D(u):D(u) over the
+  // cells and nodes plus the slip walls' eta_b-type terms, exactly as the discrete operator
+  // has them. rho: the density A was assembled with. Collective.
+  double viscous_power(Vec vel, Vec rho);
 
   // Solves A u~ = rhs. Returns the KSP iteration count; throws RunError on divergence.
   int solve(Vec rhs, Vec u_tilde);
@@ -129,9 +155,12 @@ class Predictor {
   Vec bloc_ = nullptr, xloc_ = nullptr, cloc_ = nullptr, work_ = nullptr;
   void gather_local(Vec full, Vec sub) const;
   Vec wall_rhs_ = nullptr;  // moving-wall contributions c U / h, depend on eta
+  double a0dt_ = 0;         // a0/dt of the assembled matrix, 1/s
   Vec lrho_ = nullptr, leta_ = nullptr, letan_ = nullptr, lvel_ = nullptr, lvel_old_ = nullptr,
       lp_ = nullptr;
   Vec conv_ = nullptr, conv_old_ = nullptr;
+  // transport(): the ghosted advecting velocity, fluxes and fractions.
+  Vec ladv_ = nullptr, lflux_ = nullptr, lca_ = nullptr, lcb_ = nullptr, lcc_ = nullptr;
   boundary::CoulombWalls walls_;
 };
 

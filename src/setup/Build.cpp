@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "core/Error.hpp"
 #include "levelset/PrescribedFlow.hpp"
 #include "setup/Kinematic.hpp"
 #include "setup/Report.hpp"
+#include "vof/Vof.hpp"
 
 namespace gf {
 
@@ -68,6 +70,8 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.fp.monitor = rh.fp_monitor;
   p.fp.local_margin = c.solver.viscous_local_margin;
   p.yield_support = rh.yield_on_mass && c.levelset.enabled ? p.eps : 0.0;
+  p.interface_method = c.interface.method;
+  p.normals = c.interface.normals;
   for (int sd = 0; sd < 4; ++sd)
     p.wall_tan_b[sd] = c.walls[sd].friction_angle_deg > 0 ? c.walls[sd].tan_friction() : 0.0;
   return p;
@@ -83,6 +87,8 @@ std::unique_ptr<TimeStepper> make_stepper(const Grid& g, const CaseConfig& c) {
   k.cy = c.flow.cy;
   k.period = c.flow.period;
   k.redistance = redistance_from_case(c);
+  k.method = c.interface.method;
+  k.normals = c.interface.normals;
   k.eps = eps_of(c);
   k.rho_air = c.air.rho;
   k.rho_gran = c.granular.rho;
@@ -132,14 +138,11 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
   return r;
 }
 
-void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi) {
+std::function<double(double, double)> initial_distance(const CaseConfig& c) {
   const auto& in = c.initial;
-  if (!c.levelset.enabled) {
-    GF_PETSC(VecSet(phi, -1.0));
-    return;
-  }
+  std::function<double(double, double)> d;
   switch (in.shape) {
-    case CaseConfig::Shape::None: GF_PETSC(VecSet(phi, 1.0)); break;  // all air
+    case CaseConfig::Shape::None: return [](double, double) { return 1.0; };  // all air
     case CaseConfig::Shape::Rectangle: {
       // A side of the column lying on a wall is not an interface: extend the rectangle beyond
       // that wall so that phi is the distance to the free sides only (otherwise H_eps smears
@@ -150,19 +153,55 @@ void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi) {
       const bool span = in.x0 <= 0 && in.x1 >= Lx;
       const bool ext_x0 = in.x0 <= 0 && (!c.periodic_x || span);
       const bool ext_x1 = in.x1 >= Lx && (!c.periodic_x || span);
-      levelset::init_rectangle(g, phi, ext_x0 ? -Lx : in.x0, ext_x1 ? 2 * Lx : in.x1,
-                               in.y0 <= 0 ? -Ly : in.y0, in.y1 >= Ly ? 2 * Ly : in.y1);
+      const double x0 = ext_x0 ? -Lx : in.x0, x1 = ext_x1 ? 2 * Lx : in.x1;
+      const double y0 = in.y0 <= 0 ? -Ly : in.y0, y1 = in.y1 >= Ly ? 2 * Ly : in.y1;
+      d = [=](double x, double y) { return levelset::rectangle_distance(x, y, x0, x1, y0, y1); };
       break;
     }
-    case CaseConfig::Shape::Layer: levelset::init_layer(g, phi, in.height); break;
-    case CaseConfig::Shape::Circle: levelset::init_circle(g, phi, in.cx, in.cy, in.radius); break;
+    case CaseConfig::Shape::Layer:
+      d = [h = in.height](double, double y) { return y - h; };
+      break;
+    case CaseConfig::Shape::Circle:
+      d = [=](double x, double y) { return levelset::circle_distance(x, y, in.cx, in.cy, in.radius); };
+      break;
     case CaseConfig::Shape::Trapezoid:
-      levelset::init_trapezoid(g, phi, in.x0, in.x1, in.height, in.slope_deg);
+      d = [=](double x, double y) {
+        return levelset::trapezoid_distance(x, y, in.x0, in.x1, in.height, in.slope_deg);
+      };
       break;
     case CaseConfig::Shape::Zalesak:
-      levelset::init_zalesak(g, phi, in.cx, in.cy, in.radius, in.slot_width, in.slot_depth);
+      d = [=](double x, double y) {
+        return levelset::zalesak_distance(x, y, in.cx, in.cy, in.radius, in.slot_width,
+                                          in.slot_depth);
+      };
       break;
   }
+  if (!c.periodic_x) return d;
+  // With periodic x the shape repeats with period Lx: the distance to the nearest image.
+  const double Lx = c.domain.Lx;
+  return [=](double x, double y) { return std::min({d(x - Lx, y), d(x, y), d(x + Lx, y)}); };
+}
+
+void initial_levelset(const Grid& g, const CaseConfig& c, Vec phi) {
+  if (!c.levelset.enabled) {
+    GF_PETSC(VecSet(phi, -1.0));
+    return;
+  }
+  const auto d = initial_distance(c);
+  const Box& b = g.box();
+  PetscScalar** p;
+  GF_PETSC(DMDAVecGetArray(g.dm_cell(), phi, &p));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) p[j][i] = d(b.xc(i), b.yc(j));
+  GF_PETSC(DMDAVecRestoreArray(g.dm_cell(), phi, &p));
+}
+
+void initial_fraction(const Grid& g, const CaseConfig& c, Vec frac) {
+  if (!c.levelset.enabled) {
+    GF_PETSC(VecSet(frac, 1.0));
+    return;
+  }
+  vof::init_fraction(g, frac, initial_distance(c));
 }
 
 void initial_velocity(const Grid& g, const CaseConfig& c, Vec vel, Vec vel_old) {

@@ -32,7 +32,7 @@ const char* to_string(CaseConfig::Viscosity v) { return kViscosities[static_cast
 bool CaseConfig::operator==(const CaseConfig& o) const {
   return title == o.title && domain == o.domain && nx == o.nx && ny == o.ny && hx == o.hx &&
          hy == o.hy && time == o.time && gravity == o.gravity && granular == o.granular &&
-         air == o.air && rheology == o.rheology && levelset == o.levelset && initial == o.initial &&
+         air == o.air && rheology == o.rheology && levelset == o.levelset && interface == o.interface && initial == o.initial &&
          flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && output == o.output && collapse == o.collapse &&
          solver == o.solver &&
          probes == o.probes;
@@ -112,6 +112,9 @@ CaseConfig fill(const Params& p) {
   c.levelset.redistance_wall_extrapolate =
       p.get_string("levelset.redistance_wall") == "extrapolate";
   c.levelset.redistance_cfl = p.get_real("levelset.redistance_cfl");
+  c.interface.method =
+      enum_of<interface::Method>(kInterfaceMethods, p.get_string("interface.method"));
+  c.interface.normals = enum_of<vof::Normals>(kInterfaceNormals, p.get_string("interface.normals"));
 
   auto& in = c.initial;
   in.shape = enum_of<Shape>(kShapes, p.get_string("initial.shape"));

@@ -15,6 +15,7 @@
 
 #include "boundary/Boundary.hpp"
 #include "core/Params.hpp"
+#include "interface/Interface.hpp"
 #include "rheology/Rheology.hpp"
 #include "setup/Kinematic.hpp"
 
@@ -67,6 +68,12 @@ struct CaseConfig {
     int redistance_iters = 0;
     double redistance_cfl = 0;  // pseudo-time CFL
     bool operator==(const LevelSet&) const = default;
+  };
+  // interface.method: the paper's level set, or the mass-conserving CLSVOF (interface/).
+  struct InterfaceChoice {
+    interface::Method method = interface::Method::LevelSet;
+    vof::Normals normals = vof::Normals::LevelSet;  // clsvof: the PLIC normals
+    bool operator==(const InterfaceChoice&) const = default;
   };
   struct Initial {
     Shape shape = Shape::None;
@@ -172,6 +179,7 @@ struct CaseConfig {
   Phase granular, air;
   Rheology rheology;
   LevelSet levelset;
+  InterfaceChoice interface;
   Initial initial;
   Flow flow;
   std::array<WallConfig, 4> walls{};  // indexed by Side

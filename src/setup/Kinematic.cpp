@@ -7,13 +7,27 @@
 
 namespace gf {
 
+namespace {
+interface::Config interface_config(const KinematicConfig& k) {
+  interface::Config c;
+  c.method = k.method;
+  c.redistance = k.redistance;
+  c.props = levelset::Props{k.rho_air, k.rho_gran, k.eta_air, k.eta_gran, k.eps};
+  c.normals = k.normals;
+  return c;
+}
+}  // namespace
+
 KinematicStepper::KinematicStepper(const Grid& g, const KinematicConfig& cfg)
-    : g_(g), cfg_(cfg), interface_(g, cfg.redistance) {
+    : g_(g), cfg_(cfg), interface_(g, interface_config(cfg)) {
   traits_.solves_momentum = false;
   traits_.two_phase = true;
   traits_.eps = cfg_.eps;
   traits_.gravity = {0.0, 0.0};
   traits_.returns_to_start = true;
+  traits_.conservative = interface_.conservative();
+  traits_.rho_air = cfg_.rho_air;
+  traits_.rho_gran = cfg_.rho_gran;
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &kappa_));
   GF_PETSC(VecSet(kappa_, 0.0));
 }
@@ -30,8 +44,8 @@ void KinematicStepper::prescribe_velocity(State& s, double t) const {
 void KinematicStepper::initialize(State& s) {
   // The properties of the initial phi, for the diagnostics (kinetic energy, VTK); a kinematic
   // run does not update them.
-  const levelset::Props pr{cfg_.rho_air, cfg_.rho_gran, cfg_.eta_air, cfg_.eta_gran, cfg_.eps};
-  levelset::update_properties(g_, s.phi, pr, s.rho, s.eta);
+  interface_.initialize(s);
+  interface_.properties(s, s.rho, s.eta, nullptr);
   prescribe_velocity(s, s.t);
 }
 
@@ -39,7 +53,7 @@ StepStats KinematicStepper::step(State& s, double dt) {
   StepStats st;
   // The velocity at the middle of the step, then eq. 26 and the redistancing.
   prescribe_velocity(s, s.t + 0.5 * dt);
-  st.redistanced = interface_.advance(s.phi, s.vel, s.t, s.step, dt);
+  st.redistanced = interface_.advance(s, s.vel, dt);
   s.dt_old = s.dt;
   s.dt = dt;
   s.t += dt;

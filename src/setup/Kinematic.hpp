@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "grid/Grid.hpp"
-#include "levelset/Interface.hpp"
+#include "interface/Interface.hpp"
 #include "stepper/TimeStepper.hpp"
 
 namespace gf {
@@ -23,6 +23,8 @@ struct KinematicConfig {
   double omega = 0, cx = 0, cy = 0;  // rad/s, m, m: rotation
   double period = 1;                 // s: single vortex
   levelset::RedistanceConfig redistance;
+  interface::Method method = interface::Method::LevelSet;  // interface.method
+  vof::Normals normals = vof::Normals::LevelSet;
   double eps = 0;                          // m, for the properties (eq. 25)
   double rho_air = 1.2, rho_gran = 1550;   // kg/m^3
   double eta_air = 1.8e-5, eta_gran = 0.5;  // Pa s
@@ -43,7 +45,7 @@ class KinematicStepper : public TimeStepper {
   const Grid& g_;
   KinematicConfig cfg_;
   ModelTraits traits_;
-  levelset::InterfaceStage interface_;
+  interface::Interface interface_;
   Vec kappa_ = nullptr;  // no yield stress: zero
   void prescribe_velocity(State& s, double t) const;
 };

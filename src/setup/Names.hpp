@@ -28,6 +28,8 @@ inline const std::vector<std::string> kPlasticGrids{"cell", "cell_node"};
 inline const std::vector<std::string> kYieldSupports{"phase", "mass"};
 inline const std::vector<std::string> kRedistanceWalls{"drop", "extrapolate"};
 inline const std::vector<std::string> kViscosities{"constant", "mu_i"};
+inline const std::vector<std::string> kInterfaceMethods{"level_set", "clsvof"};
+inline const std::vector<std::string> kInterfaceNormals{"level_set", "youngs"};
 
 // Counts are stored as int; these bounds keep them (and nx * ny) far from overflow.
 inline constexpr double kMaxCellsPerSide = 100000;

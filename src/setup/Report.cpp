@@ -284,7 +284,10 @@ std::string describe_case(const CaseConfig& c, int nranks, double available_byte
     os << "level set advected by the prescribed " << to_string(c.flow.prescribed)
        << " flow (momentum not solved)\n";
   else if (c.levelset.enabled)
-    os << "two phases (level set), initial " << to_string(c.initial.shape) << "\n";
+    os << (c.interface.method == interface::Method::Clsvof
+               ? "two phases (clsvof: conserved volume fraction + level set), initial "
+               : "two phases (level set), initial ")
+       << to_string(c.initial.shape) << "\n";
   else
     os << "single phase (the granular fluid fills the domain)\n";
 

@@ -334,6 +334,7 @@ int run_or_check(const CommandLine& a) {
                                   c.periodic_x);
     state = std::make_unique<State>(*grid);
     initial_levelset(*grid, c, state->phi);
+    initial_fraction(*grid, c, state->frac);
     initial_velocity(*grid, c, state->vel, state->vel_old);
     stepper = make_stepper(*grid, c);
   } catch (const PetscFailure& e) {

@@ -225,6 +225,28 @@ void declare_levelset(Params& p) {
              "CFL number of the redistancing pseudo-time steps.");
 }
 
+// The interface method (interface/Interface.hpp).
+void declare_interface(Params& p) {
+  p.add_enum("interface.method", "clsvof", kInterfaceMethods,
+             "How the interface moves and where the mass is. clsvof (default): the granular "
+             "volume fraction c is transported by the conservative geometric scheme of "
+             "Weymouth & Yue (2010) with the normals of the level set (CLSVOF, Sussman & "
+             "Puckett 2000), phi is rebuilt every step as the distance to c's interface "
+             "(levelset.redistance_* then do not apply, eps_cells only sets the band left out "
+             "of max_speed_granular), rho = rho_f (1 - c) + rho_s c, the momentum is "
+             "transported with the mass fluxes of c (BDF1 in time), and the yield stress and "
+             "the wall friction act wherever c > 0, the wall load including the wall cells' "
+             "own weight: the granular volume is conserved to round-off, deposits stay where "
+             "they stop and the water dam break gains no energy (docs/INTERFACE.md). "
+             "level_set: the paper's level set (section 3.1: eq. 26, the Heaviside density of "
+             "eq. 25, redistancing, BDF2 with the velocity convected); its granular volume "
+             "int (1 - H_eps(phi)) is not conserved (docs/LEVELSET_VOLUME.md): the scheme of "
+             "the paper's figures.");
+  p.add_enum("interface.normals", "level_set", kInterfaceNormals,
+             "clsvof: the normals of the PLIC interface: level_set = grad phi (CLSVOF), youngs = "
+             "-grad c by Youngs' 3 x 3 stencil (plain VOF).");
+}
+
 // The initial state and the prescribed flows of the level-set benchmarks.
 void declare_initial(Params& p) {
   p.add_enum("initial.shape", "rectangle", kShapes,
@@ -410,6 +432,7 @@ Params case_params() {
   declare_domain_time(p);
   declare_physics(p);
   declare_levelset(p);
+  declare_interface(p);
   declare_initial(p);
   declare_walls(p);
   declare_output(p);

@@ -19,6 +19,7 @@
 #include "io/Json.hpp"
 #include "levelset/LevelSet.hpp"
 #include "sim/Counters.hpp"
+#include "vof/Vof.hpp"
 
 namespace gf {
 
@@ -77,7 +78,8 @@ double decimal_multiple(long long k, double interval) {
 }
 
 // The prognostic fields, in checkpoint order (their names are checked on loading).
-std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, const ModelTraits& tr) {
+std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, Vec frac0,
+                                                   const ModelTraits& tr) {
   // rho and eta are derived from phi (and, with mu(I), from u and p) but are kept as the last
   // step left them, so that a restart needs no recomputation that could differ.
   std::vector<io::CheckpointField> f = {
@@ -85,6 +87,10 @@ std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, const Mod
       {"S", s.S},     {"s_wall", s.s_wall}, {"rho", s.rho},             {"eta", s.eta}};
   if (tr.returns_to_start) f.push_back({"phi0", phi0});
   if (tr.node_copy) f.push_back({"S_node", s.S_node});  // rheology.plastic_grid = "cell_node"
+  if (tr.conservative) {  // interface.method = "clsvof": the volume fraction carries the mass
+    f.push_back({"volume_fraction", s.frac});
+    if (tr.returns_to_start) f.push_back({"volume_fraction0", frac0});
+  }
   return f;
 }
 
@@ -93,7 +99,9 @@ const std::vector<std::string> kDiagnosticsColumns = {
     "granular_v", "kinetic_energy", "max_divergence", "visc_its", "pres_its", "fp_iters",
     "fp_change", "left_stick_m", "left_slide_m", "bottom_stick_m", "bottom_slide_m",
     "left_normal_N", "left_friction_N", "bottom_normal_N", "bottom_friction_N", "front_x",
-    "backwall_h", "max_p_granular", "max_speed_granular"};
+    "backwall_h", "max_p_granular", "max_speed_granular", "volume_step_change",
+    "potential_energy", "dissipated_viscous", "dissipated_plastic", "dissipated_friction",
+    "energy_residual"};
 
 }  // namespace
 
@@ -122,7 +130,12 @@ struct Simulation::Output {
 };
 
 Simulation::Simulation(const Grid& g, State& s, TimeStepper& stepper, const RunConfig& rc)
-    : g_(g), s_(s), stepper_(stepper), rc_(rc), phi0_(g.dm_cell(), "phi0") {}
+    : g_(g),
+      s_(s),
+      stepper_(stepper),
+      rc_(rc),
+      phi0_(g.dm_cell(), "phi0"),
+      frac0_(g.dm_cell(), "volume_fraction0") {}
 
 Simulation::~Simulation() = default;
 
@@ -141,6 +154,9 @@ void Loop::add(const StepStats& st, double dt) {
   visc_polish_its_total += st.visc_polish_its;
   if (st.visc_polish_its > 0) ++visc_polish_steps;
   if (st.redistanced) ++redistancings;
+  diss_viscous += st.diss_viscous;
+  diss_plastic += st.diss_plastic;
+  diss_friction += st.diss_friction;
   dt_prev = dt;
 }
 
@@ -200,7 +216,7 @@ void Simulation::save_checkpoint(const std::string& reason) {
     h.set_text("vtk." + std::to_string(k), hex(ve[k].first) + " " + ve[k].second);
   prof::Scope pscope(prof::Checkpoint);
   io::write_checkpoint(g_.comm(), rc_.out_dir, std::move(h),
-                       checkpoint_fields(s_, phi0_, stepper_.traits()), ckpt_files_);
+                       checkpoint_fields(s_, phi0_, frac0_, stepper_.traits()), ckpt_files_);
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;
   if (g_.rank() == 0)
@@ -273,7 +289,7 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
     vtk_entries_.emplace_back(te, v.substr(sp + 1));
   }
   io::read_checkpoint_fields(g_.comm(), ckpt_dir, h,
-                             checkpoint_fields(s_, phi0_, stepper_.traits()));
+                             checkpoint_fields(s_, phi0_, frac0_, stepper_.traits()));
   restarted_ = true;
   last_ckpt_step_ = s_.step;
   last_ckpt_t_ = s_.t;
@@ -283,7 +299,18 @@ void Simulation::restart(const std::string& ckpt_dir, const io::CheckpointHeader
 
 double Simulation::granular_volume() const {
   const ModelTraits& tr = stepper_.traits();
-  return tr.two_phase ? diag::granular_volume(g_, s_.phi, tr.eps) : g_.box().Lx * g_.box().Ly;
+  if (!tr.two_phase) return g_.box().Lx * g_.box().Ly;
+  // With the volume fraction the granular volume is the conserved sum c hx hy (vof/Vof.hpp).
+  return tr.conservative ? vof::volume(g_, s_.frac) : diag::granular_volume(g_, s_.phi, tr.eps);
+}
+
+double Simulation::potential_energy() const {
+  const ModelTraits& tr = stepper_.traits();
+  // A sharp volume fraction: its mass at the centroids of the PLIC polygons (vof/Vof.hpp).
+  if (tr.conservative)
+    return vof::potential_energy(g_, s_.frac, s_.phi, vof::Normals::LevelSet, tr.rho_air,
+                                 tr.rho_gran, tr.gravity);
+  return diag::potential_energy(g_, s_.rho, tr.gravity);
 }
 
 void Simulation::write_diagnostics() {
@@ -294,7 +321,14 @@ void Simulation::write_diagnostics() {
   const double vchange = lp_.vol0 > 0 ? 100.0 * (vol - lp_.vol0) / lp_.vol0 : 0.0;
   const double div = diag::max_divergence(g_, s_.vel);
   lp_.max_div = std::max(lp_.max_div, div);
-  const auto gu = diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
+  const auto gu = tr.conservative ? diag::granular_mean_velocity(g_, s_.vel, s_.frac)
+                                  : diag::granular_mean_velocity(g_, s_.vel, s_.phi, eps);
+  // The energy budget: what the kinetic and potential energy lost since t = 0 beyond the
+  // dissipation of the model's stresses is the numerical dissipation (< 0: energy created).
+  const double ke = diag::kinetic_energy(g_, s_.vel, s_.rho);
+  const double pe = potential_energy();
+  const double residual =
+      lp_.energy0 - ke - pe - lp_.diss_viscous - lp_.diss_plastic - lp_.diss_friction;
   // Where the granular material sticks to / slides on the back wall and the bottom (eqs. 22-23).
   const auto wc = stepper_.wall_contact(s_);
   const auto &stick = wc.stick_m, &slide = wc.slide_m;
@@ -303,7 +337,6 @@ void Simulation::write_diagnostics() {
   const double t_out = output_time(rc_.output_interval);
   const auto col = out_->collapse.sample(s_.t, s_.phi, s_.vel, s_.p, t_out);
   const double speed = diag::max_speed(g_, s_.vel);
-  const double ke = diag::kinetic_energy(g_, s_.vel, s_.rho);
   // Rank 0 writes; a failure there must stop every rank, after the collective calls below.
   std::string err;
   try {
@@ -312,10 +345,12 @@ void Simulation::write_diagnostics() {
                    static_cast<double>(last.pres_its), static_cast<double>(last.fp_iters),
                    last.fp_change, stick[0], slide[0], stick[2], slide[2], wc.normal_N[0],
                    wc.friction_N[0], wc.normal_N[2], wc.friction_N[2], col.front_x,
-                   col.backwall_h, col.max_p_granular, col.max_speed_granular});
+                   col.backwall_h, col.max_p_granular, col.max_speed_granular, lp_.vol_step_max,
+                   pe, lp_.diss_viscous, lp_.diss_plastic, lp_.diss_friction, residual});
   } catch (const io::IoError& e) {
     err = e.what();
   }
+  lp_.vol_step_max = 0;
   // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
   io::NamedCellFields extra;
   if (out_->probes.samples("D_norm") || out_->probes.samples("S_norm")) {
@@ -345,12 +380,14 @@ void Simulation::write_vtk() {
   Output& o = *out_;
   io::cell_velocity(g_, s_.vel, o.ucell, nullptr, o.speed);
   stepper_.derived_fields(s_, o.dnorm, o.snorm, o.yielded);
+  std::vector<io::CellField> f = {{"phi", s_.phi, 1},       {"rho", s_.rho, 1},
+                                 {"u", o.ucell, 2},         {"speed", o.speed, 1},
+                                 {"p", s_.p, 1},            {"eta", s_.eta, 1},
+                                 {"D_norm", o.dnorm, 1},    {"S_norm", o.snorm, 1},
+                                 {"yielded", o.yielded, 1}, {"kappa", stepper_.kappa(), 1}};
+  if (stepper_.traits().conservative) f.push_back({"volume_fraction", s_.frac, 1});
   // The scheduled time in fields.pvd and TimeValue (0.1, not 0.10000000000000007).
-  const double t_out = output_time(rc_.vtk_interval);
-  o.vtk->write(t_out, {{"phi", s_.phi, 1}, {"rho", s_.rho, 1}, {"u", o.ucell, 2},
-                      {"speed", o.speed, 1}, {"p", s_.p, 1}, {"eta", s_.eta, 1},
-                      {"D_norm", o.dnorm, 1}, {"S_norm", o.snorm, 1}, {"yielded", o.yielded, 1},
-                      {"kappa", stepper_.kappa(), 1}});
+  o.vtk->write(output_time(rc_.vtk_interval), f);
 }
 
 void Simulation::write_summary(const std::string& status, const std::string& message) {
@@ -401,6 +438,8 @@ void Simulation::write_summary(const std::string& status, const std::string& mes
     const double a1 = levelset::granular_area(g_, s_.phi, 0.0);
     js.set("area_change_pct", a0 > 0 ? 100.0 * (a1 - a0) / a0 : 0.0)
         .set("interface_l1_error_m2", levelset::interface_l1_error(g_, s_.phi, phi0_));
+    // The volume fraction's own L1 error, sum |c - c0| hx hy (interface.method = "clsvof").
+    if (tr.conservative) js.set("fraction_l1_error_m2", vof::l1_error(g_, s_.frac, frac0_));
   }
   js.write_root(rc_.out_dir + "/summary.json", g_.comm());
 }
@@ -483,16 +522,21 @@ void Simulation::equilibrate() {
 }
 
 void Simulation::start() {
+  // A flow that returns the interface to its start (one turn, a reversed vortex) has the
+  // initial shape as exact answer: keep it for the interface error at the end (before the
+  // model's start, which with the volume fraction rebuilds phi from c).
+  if (stepper_.traits().returns_to_start) {
+    GF_PETSC(VecCopy(s_.phi, phi0_));
+    GF_PETSC(VecCopy(s_.frac, frac0_));
+  }
   try {
     stepper_.initialize(s_);
   } catch (const RunError& e) {
     fail(std::string(e.what()) + " (in the initial pressure of the fluid at rest, t = 0)");
   }
   if (rc_.stress_equilibrium && stepper_.traits().solves_momentum) equilibrate();
-  // A flow that returns the interface to its start (one turn, a reversed vortex) has the
-  // initial level set as exact answer: keep it for the interface error at the end.
-  if (stepper_.traits().returns_to_start) GF_PETSC(VecCopy(s_.phi, phi0_));
-  lp_.vol0 = granular_volume();
+  lp_.vol0 = lp_.vol_prev = granular_volume();
+  lp_.energy0 = diag::kinetic_energy(g_, s_.vel, s_.rho) + potential_energy();
   write_diagnostics();
   write_vtk();
   lp_.next_out = s_.t + rc_.output_interval;
@@ -513,6 +557,13 @@ double Simulation::advance(double dt) {
                  "preconditioner) in the step to t = " + num(s_.t) +
                  " s; solved again with GMRES (further cases counted in summary.json)");
   lp_.add(st, dt);
+  // The granular volume's change in this step (diagnostics.csv volume_step_change: the largest
+  // since the last row, relative to the volume at t = 0).
+  if (stepper_.traits().two_phase) {
+    const double v = granular_volume();
+    if (lp_.vol0 > 0) lp_.vol_step_max = std::max(lp_.vol_step_max, std::abs(v - lp_.vol_prev) / lp_.vol0);
+    lp_.vol_prev = v;
+  }
 
   // Failure detection: a non-finite value in any prognostic field, or a speed no flow of this
   // solver reaches (an explicit-convection blow-up grows without NaN for a while).

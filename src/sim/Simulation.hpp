@@ -100,6 +100,13 @@ struct Loop {
   // visc_its_total), and the steps where it took any: what the local solves missed.
   long long visc_polish_its_total = 0, visc_polish_steps = 0;
   long long redistancings = 0;  // steps that redistanced phi
+  // The energy budget (diagnostics.csv): the kinetic plus potential energy at t = 0 and the
+  // energy dissipated since, J/m, by the viscous stresses, the plastic stress and the Coulomb
+  // wall friction (sums of StepStats::diss_*).
+  double energy0 = 0, diss_viscous = 0, diss_plastic = 0, diss_friction = 0;
+  // The granular volume after the last step (m^2/m) and the largest change of one step since
+  // the last diagnostics row, relative to vol0.
+  double vol_prev = 0, vol_step_max = 0;
   StepStats last;               // the last step's statistics (diagnostics columns)
   // initial.stress = "equilibrium": pseudo-steps taken, the velocity the last one made (m/s);
   // -1: not asked for.
@@ -146,7 +153,8 @@ class Simulation {
   long long diag_bytes_ = 0;
   std::vector<long long> probe_bytes_;
   std::vector<std::pair<double, std::string>> vtk_entries_;
-  Field phi0_;  // the initial level set (a flow returning to its start: the exact answer)
+  Field phi0_;   // the initial level set (a flow returning to its start: the exact answer)
+  Field frac0_;  // ... and the initial volume fraction (interface.method = "clsvof")
   std::unique_ptr<Output> out_;  // during run()
   io::CheckpointHeader restart_header_;  // of the checkpoint restart() loaded
   long long last_ckpt_step_ = -1;  // step and time of the last checkpoint written or loaded
@@ -173,6 +181,7 @@ class Simulation {
   void checkpoint_if_due(double now, double& last_ckpt_wall, bool diag_written);
   // Outputs.
   double granular_volume() const;
+  double potential_energy() const;  // J/m, for the energy budget
   void write_diagnostics();
   void write_vtk();
   void write_summary(const std::string& status, const std::string& message);

@@ -12,10 +12,19 @@
 namespace gf {
 
 Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
-  if (cfg_.levelset) interface_ = std::make_unique<levelset::InterfaceStage>(g, cfg_.redistance);
+  if (cfg_.levelset) {
+    interface::Config ic;
+    ic.method = cfg_.interface_method;
+    ic.redistance = cfg_.redistance;
+    ic.props = levelset::Props{cfg_.rho_air, cfg_.rho_gran, cfg_.eta_air, cfg_.eta_gran, cfg_.eps};
+    ic.yield_support = cfg_.yield_support;
+    ic.normals = cfg_.normals;
+    interface_ = std::make_unique<interface::Interface>(g, ic);
+  }
   predictor_ = std::make_unique<momentum::Predictor>(g, cfg_.bc, cfg_.viscous_rtol);
   projector_ = std::make_unique<projection::Projector>(g, cfg_.pressure_rtol);
-  predictor_->walls().set_friction(cfg_.wall_tan_b, cfg_.yield_support);
+  predictor_->walls().set_friction(cfg_.wall_tan_b,
+                                   interface_ ? interface_->phase_offset() : cfg_.yield_support);
   const bool plastic = cfg_.rheo.active() || predictor_->walls().active();
   if (plastic)
     fixed_point_ = std::make_unique<momentum::FixedPoint>(g, *predictor_, cfg_.rheo, cfg_.fp);
@@ -23,7 +32,11 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
                  &eta_node_})
     GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
   GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &D_));
-  for (Vec* v : {&kappa_b_, &rhs0_, &u_tilde_}) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), v));
+  for (Vec* v : {&kappa_b_, &rhs0_, &u_tilde_, &u_star_, &u_half_, &force_, &zero_vel_})
+    GF_PETSC(DMCreateGlobalVector(g.dm_vel(), v));
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &zero_cell_));
+  GF_PETSC(VecSet(zero_vel_, 0.0));
+  GF_PETSC(VecSet(zero_cell_, 0.0));
   GF_PETSC(VecSet(kappa_, 0.0));
   GF_PETSC(VecSet(kappa_b_, 0.0));
   traits_.solves_momentum = true;
@@ -31,10 +44,13 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   traits_.eps = cfg_.eps;
   traits_.gravity = cfg_.gravity;
   traits_.node_copy = cfg_.rheo.node_copy;
+  traits_.conservative = consistent();
+  traits_.rho_air = cfg_.rho_air;
+  traits_.rho_gran = cfg_.rho_gran;
 }
 
 Stepper::~Stepper() {
-  for (Vec* v : {&eta_node_, &u_tilde_, &kappa_, &kappa_b_, &D_, &rhs0_, &p_hyd_, &gran_,
+  for (Vec* v : {&eta_node_, &u_tilde_, &u_star_, &u_half_, &force_, &zero_cell_, &zero_vel_, &kappa_, &kappa_b_, &D_, &rhs0_, &p_hyd_, &gran_,
                  &eta_s_, &rho_r_, &eta_r_, &support_, &granular_})
     VecDestroy(v);
 }
@@ -44,8 +60,21 @@ Stepper::~Stepper() {
 StepStats Stepper::step(State& s, double dt) {
   StepStats st;
   const bool first = (s.step == 0);
-  // 1. Level set, eq. 26, advected by the solenoidal u^n; redistanced when due.
-  if (cfg_.levelset) st.redistanced = interface_->advance(s.phi, s.vel, s.t, s.step, dt);
+  // 1. The interface: the level set of eq. 26 with the solenoidal u^n, redistanced when due; or
+  //    the conservative volume fraction with phi rebuilt from it (interface/Interface.hpp),
+  //    carried by u^{n+1/2} = u^n + dt/(2 dt_old) (u^n - u^{n-1}), also solenoidal. The mass
+  //    must move with the velocity of the middle of the step for the potential energy it
+  //    releases to match the work of gravity on u^{n+1} in the prediction: with u^n it lags by
+  //    half a step, and a falling column gains kinetic energy beyond the potential energy it
+  //    releases (by dt/t: the dam break's first outputs at +20 % with dt = 1e-3 s).
+  if (consistent()) {
+    GF_PETSC(VecCopy(s.vel, u_half_));
+    if (!first && s.dt > 0) {
+      const double w = 0.5 * dt / s.dt;
+      GF_PETSC(VecAXPBYPCZ(u_half_, -w, w, 1.0, s.vel_old, s.vel));
+    }
+  }
+  if (cfg_.levelset) st.redistanced = interface_->advance(s, consistent() ? u_half_ : s.vel.vec(), dt);
   // 2. The derived state: rho^{n+1}, eta^{n+1} (constant in a one-phase run: then the
   //    matrices, and the preconditioners built on them, are kept from step to step), kappa,
   //    kappa_b and the granular mask.
@@ -53,19 +82,51 @@ StepStats Stepper::step(State& s, double dt) {
       cfg_.levelset || first || cfg_.rheo.viscosity == rheology::Viscosity::MuI;
   update_derived(s, props_change);
   // 3. Prediction, eq. 31 (kappa = 0: Newtonian phases): BDF2 history, AB2 convection,
-  //    -grad p^n, gravity, then the implicit viscous solve or the fixed point.
-  const auto c = momentum::TimeCoeffs::make(dt, s.dt, first);
+  //    -grad p^n, gravity, then the implicit viscous solve or the fixed point. With the
+  //    volume fraction, the momentum is first transported with its mass fluxes (u*: the
+  //    convection, consistent with rho^n -> rho^{n+1}) and the step is BDF1 from it.
+  const auto c = consistent() ? momentum::TimeCoeffs::transported()
+                              : momentum::TimeCoeffs::make(dt, s.dt, first);
   if (props_change || c.a0 / dt != assembled_a0dt_) {
     prof::Scope ps(prof::Assemble);
     predictor_->assemble(s.rho, s.eta, eta_node_, c.a0 / dt);
     assembled_a0dt_ = c.a0 / dt;
   }
-  predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
+  if (consistent()) {
+    const vof::Advector& sw = interface_->sweeps();
+    const momentum::MassSweeps m{sw.flux(), sw.c_start(), s.frac, sw.cc(), cfg_.rho_air,
+                                 cfg_.rho_gran};
+    predictor_->transport(u_half_, s.vel, m, dt, u_star_);
+    predictor_->explicit_rhs(u_star_, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
+  } else {
+    predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
+  }
   GF_PETSC(VecCopy(s.vel, u_tilde_));  // initial guess
   predict(s, c.a0 / dt, dt, st);
   // 4. Projection, eq. 32: u^{n+1}, p^{n+1}.
   project(s, props_change, c.a0, dt, st);
+  dissipation(s, dt, st);
   return st;
+}
+
+void Stepper::dissipation(State& s, double dt, StepStats& st) {
+  const double cell = g_.hx() * g_.hy();
+  st.diss_viscous = dt * predictor_->viscous_power(s.vel, s.rho);
+  if (!fixed_point_) return;
+  // The plastic forces of eq. 31 (Predictor::add_plastic) split in their two parts: the
+  // divergence of kappa S (no wall yield) and the Coulomb tractions -kappa_b s_t (no kappa).
+  // The power they dissipate is minus their work on u^{n+1}.
+  const Vec S_node = cfg_.rheo.node_copy ? s.S_node.vec() : nullptr;
+  PetscScalar w;
+  GF_PETSC(VecSet(force_, 0.0));
+  predictor_->add_plastic(kappa_, s.S, zero_vel_, s.s_wall, force_, S_node);
+  GF_PETSC(VecDot(s.vel, force_, &w));
+  st.diss_plastic = -dt * w * cell;
+  if (!predictor_->walls().active()) return;
+  GF_PETSC(VecSet(force_, 0.0));
+  predictor_->add_plastic(zero_cell_, s.S, kappa_b_, s.s_wall, force_, S_node);
+  GF_PETSC(VecDot(s.vel, force_, &w));
+  st.diss_friction = -dt * w * cell;
 }
 
 void Stepper::predict(State& s, double a0dt, double dt, StepStats& st) {
@@ -113,15 +174,17 @@ void Stepper::update_derived(State& s, bool props_change) {
   prof::Scope ps(prof::Properties);
   if (props_change) {
     update_properties(s);
-    predictor_->walls().set_phase(s.phi);
+    predictor_->walls().set_phase(phase(s));
+    // A sharp density: the wall load includes the wall cells' own lower half (Coulomb.hpp).
+    if (consistent() && predictor_->walls().active())
+      predictor_->walls().set_wall_weight(s.rho, cfg_.gravity);
   }
   if (fixed_point_) update_yield(s);
 }
 
 void Stepper::update_properties(State& s) {
   if (cfg_.levelset) {
-    const levelset::Props pr{cfg_.rho_air, cfg_.rho_gran, cfg_.eta_air, cfg_.eta_gran, cfg_.eps};
-    levelset::update_properties(g_, s.phi, pr, s.rho, s.eta, eta_node_);
+    interface_->properties(s, s.rho, s.eta, eta_node_);  // eq. 25 and the harmonic means
   } else {
     GF_PETSC(VecSet(s.rho, cfg_.rho_gran));
     GF_PETSC(VecSet(s.eta, cfg_.eta_gran));
@@ -144,8 +207,9 @@ void Stepper::mu_i_viscosity(State& s) {
     // Granular cells where the declared bounds act (reported in summary.json).
     const Box& b = g_.box();
     const PetscScalar **es, **ph;
+    const Vec phv = phase(s);
     GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), eta_s_, &es));
-    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.phi, &ph));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), phv, &ph));
     long long at_floor = 0, at_cap = 0;
     for (PetscInt j = b.ys; j < b.ye(); ++j)
       for (PetscInt i = b.xs; i < b.xe(); ++i)
@@ -153,20 +217,22 @@ void Stepper::mu_i_viscosity(State& s) {
           if (es[j][i] <= cfg_.rheo.eta_min) ++at_floor;
           if (es[j][i] >= cfg_.rheo.eta_max) ++at_cap;
         }
-    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.phi, &ph));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), phv, &ph));
     GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), eta_s_, &es));
     mu_i_floor_cells_ = g_.sum(at_floor);
     mu_i_cap_cells_ = g_.sum(at_cap);
   }
-  levelset::mix_viscosity(g_, cfg_.levelset ? s.phi.vec() : nullptr, cfg_.eta_air, eta_s_, s.eta,
-                          eta_node_);
+  if (cfg_.levelset)
+    interface_->mix_viscosity(s, cfg_.eta_air, eta_s_, s.eta, eta_node_);
+  else
+    levelset::mix_viscosity(g_, nullptr, cfg_.eta_air, eta_s_, s.eta, eta_node_);
 }
 
 void Stepper::update_yield(State& s) {
   if (cfg_.rheo.yield == rheology::Yield::Hydrostatic) {
-    // Granular fraction 1 - H_eps(phi) of each cell, weighed by eq. 15.
+    // Granular fraction of each cell (1 - H_eps(phi), or c), weighed by eq. 15.
     if (cfg_.levelset)
-      levelset::granular_fraction(g_, s.phi, cfg_.eps, gran_);
+      interface_->granular_fraction(s, gran_);
     else
       GF_PETSC(VecSet(gran_, 1.0));
     const double gabs = std::hypot(cfg_.gravity[0], cfg_.gravity[1]);
@@ -175,29 +241,35 @@ void Stepper::update_yield(State& s) {
                                    std::abs(cfg_.gravity[1]) > 0 ? std::abs(cfg_.gravity[1]) : gabs,
                                    p_hyd_);
   }
-  levelset::yield_support(g_, s.phi, cfg_.yield_support, support_);
+  if (cfg_.levelset)
+    interface_->yield_support(s, support_);
+  else
+    levelset::yield_support(g_, s.phi, cfg_.yield_support, support_);
   rheology::yield_stress(g_, cfg_.rheo, support_, s.p, p_hyd_, kappa_);
   // The wall yield from the state at t^n; refreshed in every fixed-point iteration.
   predictor_->strain_rate(s.vel, s.eta, D_);
   predictor_->walls().yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
-  // The granular mask of the fixed point: the cells with kappa > 0 or phi < 0.
+  // The granular mask of the fixed point: the cells with kappa > 0 or granular (phi < 0; with
+  // the volume fraction, any granular mass).
   const PetscScalar *k, *ph;
   PetscScalar* m;
   PetscInt len;
+  const Vec phv = phase(s);
   GF_PETSC(VecGetLocalSize(granular_, &len));
   GF_PETSC(VecGetArrayRead(kappa_, &k));
-  GF_PETSC(VecGetArrayRead(s.phi, &ph));
+  GF_PETSC(VecGetArrayRead(phv, &ph));
   GF_PETSC(VecGetArray(granular_, &m));
   for (PetscInt c = 0; c < len; ++c) m[c] = (k[c] > 0 || ph[c] < 0) ? -1.0 : 0.0;
   GF_PETSC(VecRestoreArray(granular_, &m));
-  GF_PETSC(VecRestoreArrayRead(s.phi, &ph));
+  GF_PETSC(VecRestoreArrayRead(phv, &ph));
   GF_PETSC(VecRestoreArrayRead(kappa_, &k));
 }
 
 // --------------------------------------------------------------- start, restart, outputs
 
 void Stepper::initialize(State& s) {
-  predictor_->walls().set_phase(s.phi);
+  if (interface_) interface_->initialize(s);
+  predictor_->walls().set_phase(phase(s));
   update_properties(s);
   // Initial pressure of the fluid at rest: project the field u* = g (one unit of time, a0 = 1)
   // so that p^0 balances gravity in the sense of the discrete projection; then u = 0.
@@ -224,7 +296,7 @@ void Stepper::initialize(State& s) {
 }
 
 void Stepper::resume(State& s) {
-  predictor_->walls().set_phase(s.phi);
+  predictor_->walls().set_phase(phase(s));
   // rho and eta come from the checkpoint as the last step left them (with mu(I), those of that
   // step's start): recomputing them here would change the diagnostics of a restart that takes
   // no step. What else the stepper keeps between steps is rebuilt: the nodal viscosity of a
@@ -238,9 +310,11 @@ void Stepper::resume(State& s) {
 
 std::pair<int, double> Stepper::equilibrate(State& s, double dt, int max_steps, double tol,
                                             const std::function<double(const State&)>& measure) {
-  Vec phi0;
+  Vec phi0, c0;
   GF_PETSC(VecDuplicate(s.phi, &phi0));
   GF_PETSC(VecCopy(s.phi, phi0));
+  GF_PETSC(VecDuplicate(s.frac, &c0));
+  GF_PETSC(VecCopy(s.frac, c0));
   double speed = std::numeric_limits<double>::infinity();
   int k = 0;
   // The pseudo-steps keep the case's relaxation theta of eq. 31. At the equilibrium S = S^n and
@@ -252,8 +326,10 @@ std::pair<int, double> Stepper::equilibrate(State& s, double dt, int max_steps, 
     for (k = 1; k <= max_steps; ++k) {
       step(s, dt);
       speed = measure(s);
-      // From rest (u^n = 0) the transport leaves phi as it was; a redistancing would not.
+      // From rest (u^n = 0) the transport leaves phi (and c) as they were; a redistancing or
+      // the rebuild of phi from c would not.
       GF_PETSC(VecCopy(phi0, s.phi));
+      GF_PETSC(VecCopy(c0, s.frac));
       GF_PETSC(VecSet(s.vel, 0.0));
       GF_PETSC(VecSet(s.vel_old, 0.0));
       s.t = 0;
@@ -263,9 +339,11 @@ std::pair<int, double> Stepper::equilibrate(State& s, double dt, int max_steps, 
     }
   } catch (...) {
     VecDestroy(&phi0);
+    VecDestroy(&c0);
     throw;
   }
   VecDestroy(&phi0);
+  VecDestroy(&c0);
   update_properties(s);
   return {std::min(k, max_steps), speed};
 }

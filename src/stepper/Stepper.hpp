@@ -17,7 +17,7 @@
 #include "boundary/Boundary.hpp"
 #include "fields/Fields.hpp"
 #include "grid/Grid.hpp"
-#include "levelset/Interface.hpp"
+#include "interface/Interface.hpp"
 #include "momentum/FixedPoint.hpp"
 #include "momentum/Momentum.hpp"
 #include "rheology/Rheology.hpp"
@@ -44,6 +44,10 @@ struct PhysicsConfig {
   // granular phase, the paper; eps: wherever eq. 25 gives granular mass,
   // rheology.yield_support = "mass").
   double yield_support = 0;
+  // interface.method (interface/Interface.hpp): the paper's level set, or CLSVOF with the
+  // momentum transported by the mass fluxes of the volume fraction.
+  interface::Method interface_method = interface::Method::LevelSet;
+  vof::Normals normals = vof::Normals::LevelSet;
   std::array<double, 4> wall_tan_b{0, 0, 0, 0};  // Coulomb tan(alpha_b): left, right, bottom, top
 };
 
@@ -75,7 +79,7 @@ class Stepper : public TimeStepper {
   const Grid& g_;
   PhysicsConfig cfg_;
   ModelTraits traits_;
-  std::unique_ptr<levelset::InterfaceStage> interface_;
+  std::unique_ptr<interface::Interface> interface_;
   std::unique_ptr<momentum::Predictor> predictor_;
   std::unique_ptr<projection::Projector> projector_;
   std::unique_ptr<momentum::FixedPoint> fixed_point_;  // a yield stress or wall friction
@@ -87,6 +91,13 @@ class Stepper : public TimeStepper {
   // its 8 neighbours (rheology::neighbourhood_min), refreshed with the properties.
   Vec rho_r_ = nullptr, eta_r_ = nullptr;
   Vec eta_node_ = nullptr, u_tilde_ = nullptr;
+  Vec u_star_ = nullptr;  // clsvof: u^n transported with the mass fluxes (Predictor::transport)
+  Vec u_half_ = nullptr;  // clsvof: the velocity that carries the mass, u^{n+1/2} extrapolated
+  Vec force_ = nullptr, zero_cell_ = nullptr, zero_vel_ = nullptr;  // dissipation()
+  // Whether the momentum is transported with the mass fluxes of the volume fraction.
+  bool consistent() const { return interface_ && interface_->conservative(); }
+  // The phase the Coulomb walls and the granular mask read (phi's sign convention).
+  Vec phase(State& s) { return interface_ ? interface_->phase(s) : s.phi.vec(); }
 
   // Step 2: everything the coming step derives from phi^{n+1}, p^n and u^n. props_change: the
   // properties change (two phases, mu(I), the first step).
@@ -101,6 +112,9 @@ class Stepper : public TimeStepper {
   void predict(State& s, double a0dt, double dt, StepStats& st);
   // Step 4: the projection, then t^{n+1}.
   void project(State& s, bool props_change, double a0, double dt, StepStats& st);
+  // The energy the step dissipated (StepStats::diss_*): the power of the viscous operator and
+  // of the plastic and wall-friction forces of eq. 31 at u^{n+1}, times dt.
+  void dissipation(State& s, double dt, StepStats& st);
 };
 
 }  // namespace gf

@@ -26,6 +26,10 @@ struct StepStats {
   long long mu_i_cap_cells = 0;    // ... and at eta_max (rheology.eta_min / eta_max)
   bool redistanced = false;
   bool pres_fallback = false;      // the pressure solve was made again with GMRES (CG broke down)
+  // The energy the step dissipated, J per metre of depth (the power of each term at u^{n+1}
+  // times dt): by the viscous stresses (with the slip walls), by the plastic stress kappa S
+  // (eqs. 29, 31) and by the Coulomb wall friction kappa_b s_t (eqs. 22, 30).
+  double diss_viscous = 0, diss_plastic = 0, diss_friction = 0;
 };
 
 // The facts of a model the time loop reads.
@@ -35,6 +39,10 @@ struct ModelTraits {
   double eps = 0;               // m, half-width of the smeared Heaviside (eq. 25)
   std::array<double, 2> gravity{0.0, -9.81};  // m/s^2
   bool node_copy = false;       // the node copy of S is a prognostic field (checkpointed)
+  // The granular mass is the volume fraction's (interface.method = "clsvof"): State::frac is a
+  // prognostic field (checkpointed) and the granular volume is sum c hx hy.
+  bool conservative = false;
+  double rho_air = 1.2, rho_gran = 1550;  // kg/m^3, the two phases' densities
   // The flow brings the interface back to its start (one turn of a rotation, a reversed
   // vortex): the initial level set is the exact answer, kept for the interface error.
   bool returns_to_start = false;

@@ -93,6 +93,10 @@ grep -q '^restart$' "$tmp/sig/command.txt" || bad "command.txt does not record t
 grep -q '"steps": 300' "$tmp/sig/summary.json" || bad "summary.json steps != 300"
 
 # ---------------------------------------------------------------- 2. 1 -> 2 ranks
+# With the conserved volume fraction (interface.method = "clsvof", the default) the volume
+# changes are round-off (1e-14 %, 1e-16 per step) whose last digits depend on the order of the
+# sums over the ranks: volume_change_pct and volume_step_change get absolute tolerances of
+# 1e-10 % and 1e-12 (the granular volume itself keeps the relative 1e-8).
 D=("$src/cases/dambreak_water.toml" --set grid.n=24 --set time.t_end=0.1
    --set output.vtk_interval=0.02 --set output.progress_interval=0)
 start=$SECONDS
@@ -108,7 +112,8 @@ grep -q '"ranks": 2' "$tmp/d12/summary.json" || bad "the restart did not run on 
 echo "dam break 1 rank, and 1 -> 2 ranks: $((SECONDS - start)) s"
 echo "--- diagnostics.csv: 1 rank uninterrupted vs 1 rank to step 40 + 2 ranks from there"
 "$py" "$check" compare "$tmp/d1/diagnostics.csv" "$tmp/d12/diagnostics.csv" --rtol 1e-8 \
-  --atol max_divergence=1e-9 --int-tol visc_its=2 --int-tol pres_its=2 || bad "1 -> 2 ranks diagnostics"
+  --atol max_divergence=1e-9 --atol volume_change_pct=1e-10 --atol volume_step_change=1e-12 \
+  --int-tol visc_its=2 --int-tol pres_its=2 || bad "1 -> 2 ranks diagnostics"
 "$py" "$check" compare "$tmp/d1/probes/bottom.csv" "$tmp/d12/probes/bottom.csv" --rtol 1e-8 \
   > "$tmp/probe_cmp.log" || { cat "$tmp/probe_cmp.log"; bad "1 -> 2 ranks probes"; }
 "$py" "$check" pvd "$tmp/d12/fields.pvd" --count 6 --same-as "$tmp/d1/fields.pvd" || bad "fields.pvd after the 2-rank restart"

@@ -10,13 +10,15 @@
 #     (summary.json `redistancings`).
 #  2. dt = 5e-4 s: redistance_interval = 5e-3 s still redistances 20 times (every 10th step),
 #     where redistance_every = 5 does it 40 times.
+# The level set's redistancing: interface.method = "level_set" (pinned; with the default
+# "clsvof" phi is rebuilt from the volume fraction every step and these keys do not apply).
 # Usage: bash test_redistance_interval.sh <granflow binary> <source dir>
 set -euo pipefail
 bin="$1"; src="$2"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 common=(--set grid.n=16 --set time.t_end=0.1 --set time.dt_mode=fixed --set output.interval=0.01
-        --set output.vtk_interval=0)
+        --set output.vtk_interval=0 --set interface.method=level_set)
 run() {  # name, extra options...
   local name="$1"; shift
   "$bin" run "$src/cases/ar07_rough.toml" "${common[@]}" "$@" --out "$tmp/$name" \

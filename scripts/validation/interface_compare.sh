@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# The paper's cases and the deposits with each interface method (issue 18): case A (DP, HP,
+# mu(I)), case B, the sand column on a 20 deg plane (cases/incline_column.toml) and the 20 deg
+# pile with the default settings (cases/verify/pile_default.toml), with interface.method =
+# "clsvof" (the default) and "level_set" (the paper's scheme), one run after the other on one
+# rank (nice), into runs/interface/<name>_<method>/ (b_n64_Lx2: case B in a 2 m long channel, for
+# a front that reaches case B's far wall at x = 1.38 m); then scripts/validation/interface_compare.py
+# writes docs/interface_compare.md from whatever runs exist.
+#
+#   scripts/validation/interface_compare.sh                       # the runs below, in order
+#   ONLY="a_n64 b_n64" METHODS=clsvof scripts/validation/interface_compare.sh
+#   LIST=1 scripts/validation/interface_compare.sh                # the runs and their commands
+#
+# A run whose summary.json says "completed" is skipped unless FORCE=1. GRANFLOW=path chooses
+# the binary (default build/granflow), OUT_ROOT the output root (default runs/interface).
+# One-core wall times (clsvof, shared machine) are in docs/interface_compare.md.
+set -uo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+gf="${GRANFLOW:-$root/build/granflow}"
+out_root="${OUT_ROOT:-$root/runs/interface}"
+methods="${METHODS:-clsvof level_set}"
+novtk="--set output.vtk_interval=0"
+RUNS=(
+  "a_n32|cases/ar07_rough.toml|--set grid.n=32 $novtk"
+  "a_n64|cases/ar07_rough.toml|--set grid.n=64 $novtk"
+  "b_n64|cases/ar2_smooth.toml|--set grid.n=64 $novtk"
+  "b_n64_Lx2|cases/ar2_smooth.toml|--set grid.n=64 --set domain.Lx=2.0 $novtk"
+  "a_mui_n64|cases/ar07_rough_mui.toml|--set grid.n=64 $novtk"
+  "incline_n64|cases/incline_column.toml|--set grid.n=64 $novtk"
+  "pile_n32|cases/verify/pile_default.toml|--set grid.n=32 --set output.vtk_interval=1.0"
+  "a_n128|cases/ar07_rough.toml|--set grid.n=128 $novtk"
+  "a_hp_n64|cases/ar07_rough_hp.toml|--set grid.n=64 $novtk"
+  "b_n128|cases/ar2_smooth.toml|--set grid.n=128 $novtk"
+)
+[[ -n "${LIST:-}" || -x "$gf" ]] || "$root/scripts/build.sh" || exit 1
+mkdir -p "$out_root"
+for r in "${RUNS[@]}"; do
+  IFS='|' read -r name case opts <<<"$r"
+  if [[ -n "${ONLY:-}" && " $ONLY " != *" $name "* ]]; then continue; fi
+  for m in $methods; do
+    out="$out_root/${name}_$m"
+    cmd="granflow run $case --out ${out#$root/} $opts --set interface.method=$m"
+    if [[ -n "${LIST:-}" ]]; then echo "$cmd"; continue; fi
+    if [[ -z "${FORCE:-}" ]] && grep -qs '"status": "completed"' "$out/summary.json"; then
+      echo "skip $out (completed)"; continue
+    fi
+    echo "run  $cmd"
+    start=$SECONDS
+    # shellcheck disable=SC2086
+    nice "$gf" run "$root/$case" --out "$out" --overwrite $opts --set "interface.method=$m" \
+      --set output.progress_interval=60 > "$out.log" 2>&1
+    echo "     exit $?, $((SECONDS - start)) s"
+  done
+done
+[[ -n "${LIST:-}" ]] || /usr/bin/python3 "$root/scripts/validation/interface_compare.py" \
+  "$out_root" "$root/docs/interface_compare.md"
