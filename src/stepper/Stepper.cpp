@@ -61,30 +61,16 @@ StepStats Stepper::step(State& s, double dt) {
   StepStats st;
   const bool first = (s.step == 0);
   // 1. The interface: the level set of eq. 26 with the solenoidal u^n, redistanced when due; or
-  //    the conservative volume fraction with phi rebuilt from it (interface/Interface.hpp),
-  //    carried by u^{n+1/2} = u^n + dt/(2 dt_old) (u^n - u^{n-1}), also solenoidal. The mass
-  //    must move with the velocity of the middle of the step for the potential energy it
-  //    releases to match the work of gravity on u^{n+1} in the prediction: with u^n it lags by
-  //    half a step, and a falling column gains kinetic energy beyond the potential energy it
-  //    releases (by dt/t: the dam break's first outputs at +20 % with dt = 1e-3 s).
-  if (consistent()) {
-    GF_PETSC(VecCopy(s.vel, u_half_));
-    if (!first && s.dt > 0) {
-      const double w = 0.5 * dt / s.dt;
-      GF_PETSC(VecAXPBYPCZ(u_half_, -w, w, 1.0, s.vel_old, s.vel));
-    }
-  }
-  if (cfg_.levelset) st.redistanced = interface_->advance(s, consistent() ? u_half_ : s.vel.vec(), dt);
+  //    the conservative volume fraction with phi rebuilt from it (interface/Interface.hpp).
+  advance_interface(s, dt, first, st);
   // 2. The derived state: rho^{n+1}, eta^{n+1} (constant in a one-phase run: then the
   //    matrices, and the preconditioners built on them, are kept from step to step), kappa,
   //    kappa_b and the granular mask.
   const bool props_change =
       cfg_.levelset || first || cfg_.rheo.viscosity == rheology::Viscosity::MuI;
   update_derived(s, props_change);
-  // 3. Prediction, eq. 31 (kappa = 0: Newtonian phases): BDF2 history, AB2 convection,
-  //    -grad p^n, gravity, then the implicit viscous solve or the fixed point. With the
-  //    volume fraction, the momentum is first transported with its mass fluxes (u*: the
-  //    convection, consistent with rho^n -> rho^{n+1}) and the step is BDF1 from it.
+  // 3. Prediction, eq. 31 (kappa = 0: Newtonian phases): the explicit terms, then the implicit
+  //    viscous solve or the fixed point.
   const auto c = consistent() ? momentum::TimeCoeffs::transported()
                               : momentum::TimeCoeffs::make(dt, s.dt, first);
   if (props_change || c.a0 / dt != assembled_a0dt_) {
@@ -92,21 +78,48 @@ StepStats Stepper::step(State& s, double dt) {
     predictor_->assemble(s.rho, s.eta, eta_node_, c.a0 / dt);
     assembled_a0dt_ = c.a0 / dt;
   }
-  if (consistent()) {
-    const vof::Advector& sw = interface_->sweeps();
-    const momentum::MassSweeps m{sw.flux(), sw.c_start(), s.frac, sw.cc(), cfg_.rho_air,
-                                 cfg_.rho_gran};
-    predictor_->transport(u_half_, s.vel, m, dt, u_star_);
-    predictor_->explicit_rhs(u_star_, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
-  } else {
-    predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
-  }
+  explicit_terms(s, c, dt);
   GF_PETSC(VecCopy(s.vel, u_tilde_));  // initial guess
   predict(s, c.a0 / dt, dt, st);
   // 4. Projection, eq. 32: u^{n+1}, p^{n+1}.
   project(s, props_change, c.a0, dt, st);
   dissipation(s, dt, st);
   return st;
+}
+
+void Stepper::advance_interface(State& s, double dt, bool first, StepStats& st) {
+  if (!cfg_.levelset) return;
+  if (!consistent()) {
+    st.redistanced = interface_->advance(s, s.vel, dt);
+    return;
+  }
+  // The volume fraction is carried by u^{n+1/2} = u^n + dt/(2 dt_old) (u^n - u^{n-1}), also
+  // solenoidal. The mass must move with the velocity of the middle of the step for the
+  // potential energy it releases to match the work of gravity on u^{n+1} in the prediction:
+  // with u^n it lags by half a step, and a falling column gains kinetic energy beyond the
+  // potential energy it releases (by dt/t: the dam break's first outputs at +20 % with
+  // dt = 1e-3 s).
+  GF_PETSC(VecCopy(s.vel, u_half_));
+  if (!first && s.dt > 0) {
+    const double w = 0.5 * dt / s.dt;
+    GF_PETSC(VecAXPBYPCZ(u_half_, -w, w, 1.0, s.vel_old, s.vel));
+  }
+  st.redistanced = interface_->advance(s, u_half_, dt);
+}
+
+void Stepper::explicit_terms(State& s, const momentum::TimeCoeffs& c, double dt) {
+  if (!consistent()) {
+    // BDF2 history, AB2 convection, -grad p^n, gravity.
+    predictor_->explicit_rhs(s.vel, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
+    return;
+  }
+  // With the volume fraction, the momentum is first transported with its mass fluxes (u*: the
+  // convection, consistent with rho^n -> rho^{n+1}) and the step is BDF1 from it.
+  const vof::Advector& sw = interface_->sweeps();
+  const momentum::MassSweeps m{sw.flux(), sw.c_start(), s.frac, sw.cc(), cfg_.rho_air,
+                               cfg_.rho_gran};
+  predictor_->transport(u_half_, s.vel, m, dt, u_star_);
+  predictor_->explicit_rhs(u_star_, s.vel_old, s.p, s.rho, c, dt, cfg_.gravity, rhs0_);
 }
 
 void Stepper::dissipation(State& s, double dt, StepStats& st) {

@@ -99,6 +99,10 @@ class Stepper : public TimeStepper {
   // The phase the Coulomb walls and the granular mask read (phi's sign convention).
   Vec phase(State& s) { return interface_ ? interface_->phase(s) : s.phi.vec(); }
 
+  // Step 1: the interface to t^{n+1} (phi, and with clsvof the volume fraction).
+  void advance_interface(State& s, double dt, bool first, StepStats& st);
+  // Step 3's explicit part into rhs0_ (with clsvof after the momentum's transport into u_star_).
+  void explicit_terms(State& s, const momentum::TimeCoeffs& c, double dt);
   // Step 2: everything the coming step derives from phi^{n+1}, p^n and u^n. props_change: the
   // properties change (two phases, mu(I), the first step).
   void update_derived(State& s, bool props_change);
