@@ -32,6 +32,8 @@ RUNS=(
   "a_n128|cases/ar07_rough.toml|--set grid.n=128 $novtk"
   "a_hp_n64|cases/ar07_rough_hp.toml|--set grid.n=64 $novtk"
   "b_n128|cases/ar2_smooth.toml|--set grid.n=128 $novtk"
+  "a_mui_n128|cases/ar07_rough_mui.toml|--set grid.n=128 $novtk"
+  "a_hp_n128|cases/ar07_rough_hp.toml|--set grid.n=128 $novtk"
 )
 [[ -n "${LIST:-}" || -x "$gf" ]] || "$root/scripts/build.sh" || exit 1
 mkdir -p "$out_root"
