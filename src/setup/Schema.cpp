@@ -72,9 +72,8 @@ void declare_domain_time(Params& p) {
 
   p.add_real("time.t_end", "s", 1.0, Range::gt(0), "Simulated end time.");
   p.add_enum("time.dt_mode", "adaptive", kDtModes,
-             "adaptive: dt = cfl h / max|u| every step, within [dt_min, dt_max], shortened to "
-             "land on the next output time (diagnostics, VTK, t_end); fixed: the same dt every "
-             "step (the outputs at the first step at or after each output time).");
+             "adaptive: dt = cfl h / max|u| every step, within [dt_min, dt_max]; "
+             "fixed: the same dt every step.");
   p.add_real("time.dt", "s", 0.0, Range::ge(0),
              "The fixed step (dt_mode = fixed) or the first step (adaptive); 0 = automatic: "
              "cfl h / U with the velocity scale U of `granflow check`, capped by dt_max.");

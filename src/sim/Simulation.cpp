@@ -177,21 +177,8 @@ double Simulation::choose_dt(double umax, double dt_prev) const {
     if (dt_prev > 0) dt = std::min(dt, 1.2 * dt_prev);
     else if (rc_.dt > 0) dt = std::min(dt, rc_.dt);
   }
-  // An adaptive step lands on the next output time (diagnostics or VTK), so that the outputs
-  // are at their scheduled times (df.t == 0.3 selects a row), and a step that would leave a
-  // sliver before it is halved with the next; a fixed dt is the user's and is kept.
-  double target = rc_.t_end;
-  if (!rc_.dt_fixed) {
-    // (An output time closer than dt_min, or than round-off, is not landed on.)
-    const double gap = std::max(this->tiny(), rc_.dt_min);
-    if (rc_.output_interval > 0 && lp_.next_out > s_.t + gap)
-      target = std::min(target, lp_.next_out);
-    if (rc_.vtk_interval > 0 && lp_.next_vtk > s_.t + gap) target = std::min(target, lp_.next_vtk);
-  }
-  // (1e-9 dt: the round-off of t summed over the steps is no reason for an extra step.)
-  const double remaining = target - s_.t;
-  if (dt * (1.0 + 1e-9) >= remaining) dt = remaining;
-  else if (!rc_.dt_fixed && 2.0 * dt > remaining) dt = 0.5 * remaining;
+  const double remaining = rc_.t_end - s_.t;
+  if (dt > remaining) dt = remaining;
   return dt;
 }
 
