@@ -11,6 +11,7 @@
 #include "grid/Grid.hpp"
 #include "levelset/LevelSet.hpp"
 #include "levelset/PrescribedFlow.hpp"
+#include "../helpers.hpp"
 
 namespace ls = gf::levelset;
 using gf::Field;
@@ -60,33 +61,8 @@ Outcome evolve(const Grid& g, Vec phi, Vec rho, Vec eta) {
 
 // Max |a - b| / max |b| between a WORLD Vec (DMDA ordering) and a SELF Vec of the same grid.
 double rel_diff(const Grid& gw, Vec world, Vec self) {
-  Vec nat, all;
-  VecScatter sc;
-  DMDACreateNaturalVector(gw.dm_cell(), &nat);
-  DMDAGlobalToNaturalBegin(gw.dm_cell(), world, INSERT_VALUES, nat);
-  DMDAGlobalToNaturalEnd(gw.dm_cell(), world, INSERT_VALUES, nat);
-  VecScatterCreateToAll(nat, &sc, &all);
-  VecScatterBegin(sc, nat, all, INSERT_VALUES, SCATTER_FORWARD);
-  VecScatterEnd(sc, nat, all, INSERT_VALUES, SCATTER_FORWARD);
-  const PetscScalar *a, *s;
-  PetscInt n, m;
-  VecGetLocalSize(all, &n);
-  VecGetLocalSize(self, &m);
-  EXPECT_EQ(n, m);
-  VecGetArrayRead(all, &a);
-  VecGetArrayRead(self, &s);
-  double d = 0, mx = 0;
-  for (PetscInt k = 0; k < std::min(n, m); ++k) {
-    d = std::max(d, std::abs(a[k] - s[k]));
-    mx = std::max(mx, std::abs(s[k]));
-    if (!std::isfinite(a[k]) || !std::isfinite(s[k])) d = INFINITY;
-  }
-  VecRestoreArrayRead(self, &s);
-  VecRestoreArrayRead(all, &a);
-  VecScatterDestroy(&sc);
-  VecDestroy(&all);
-  VecDestroy(&nat);
-  return d / mx;
+  const gf::test::WorldVsSelf d = gf::test::world_vs_self(gw.dm_cell(), world, self);
+  return d.max_abs / d.max_ref;
 }
 
 }  // namespace

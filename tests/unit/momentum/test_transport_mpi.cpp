@@ -20,6 +20,7 @@
 #include "operators/Operators.hpp"
 #include "projection/Projection.hpp"
 #include "vof/Vof.hpp"
+#include "../helpers.hpp"
 
 namespace ls = gf::levelset;
 namespace vof = gf::vof;
@@ -30,15 +31,7 @@ namespace {
 
 constexpr double kRhoAir = 1.2, kRhoGran = 1550;
 
-template <class F>
-void fill_cells(const Grid& g, Vec v, const F& f) {
-  const gf::Box& b = g.box();
-  PetscScalar** a;
-  DMDAVecGetArray(g.dm_cell(), v, &a);
-  for (PetscInt j = b.ys; j < b.ye(); ++j)
-    for (PetscInt i = b.xs; i < b.xe(); ++i) a[j][i] = f(b.xc(i), b.yc(j));
-  DMDAVecRestoreArray(g.dm_cell(), v, &a);
-}
+using gf::test::fill_cells;
 
 // The face kinetic energy sum 1/2 rho_f u^2 hx hy with rho_f the mean of the two cells' rho(c).
 double face_energy(const Grid& g, Vec vel, Vec c) {
@@ -97,11 +90,7 @@ TEST(MomentumTransport, UniformVelocityCrossesTheDensityJump) {
   vof::init_fraction(g, c, d);
   {
     const gf::Box& b = g.box();
-    PetscScalar** p;
-    DMDAVecGetArray(g.dm_cell(), phi, &p);
-    for (PetscInt j = b.ys; j < b.ye(); ++j)
-      for (PetscInt i = b.xs; i < b.xe(); ++i) p[j][i] = d(b.xc(i), b.yc(j));
-    DMDAVecRestoreArray(g.dm_cell(), phi, &p);
+    fill_cells(g, phi, d);
     gf::Vel** v;
     DMDAVecGetArray(g.dm_vel(), vel, &v);
     for (PetscInt j = b.ys; j < b.ye(); ++j)

@@ -28,6 +28,7 @@
 #include "levelset/PrescribedFlow.hpp"
 #include "setup/Build.hpp"
 #include "stepper/Stepper.hpp"
+#include "../helpers.hpp"
 
 using namespace gf;
 using std::numbers::pi;
@@ -178,33 +179,7 @@ namespace {
 
 // Max |a - b| / max |b| between a WORLD Vec (DMDA ordering) of dm and a SELF Vec of the same grid.
 double rel_diff(DM dm, Vec world, Vec self) {
-  Vec nat, all;
-  VecScatter sc;
-  DMDACreateNaturalVector(dm, &nat);
-  DMDAGlobalToNaturalBegin(dm, world, INSERT_VALUES, nat);
-  DMDAGlobalToNaturalEnd(dm, world, INSERT_VALUES, nat);
-  VecScatterCreateToAll(nat, &sc, &all);
-  VecScatterBegin(sc, nat, all, INSERT_VALUES, SCATTER_FORWARD);
-  VecScatterEnd(sc, nat, all, INSERT_VALUES, SCATTER_FORWARD);
-  const PetscScalar *a, *s;
-  PetscInt n, m;
-  VecGetLocalSize(all, &n);
-  VecGetLocalSize(self, &m);
-  EXPECT_EQ(n, m);
-  VecGetArrayRead(all, &a);
-  VecGetArrayRead(self, &s);
-  double d = 0, mx = 0;
-  for (PetscInt k = 0; k < std::min(n, m); ++k) {
-    d = std::max(d, std::abs(a[k] - s[k]));
-    mx = std::max(mx, std::abs(s[k]));
-    if (!std::isfinite(a[k]) || !std::isfinite(s[k])) d = INFINITY;
-  }
-  VecRestoreArrayRead(self, &s);
-  VecRestoreArrayRead(all, &a);
-  VecScatterDestroy(&sc);
-  VecDestroy(&all);
-  VecDestroy(&nat);
-  return mx > 0 ? d / mx : d;
+  return gf::test::world_vs_self(dm, world, self).rel();
 }
 
 // Level set across the seam: a disk on the seam in a shear flow u = sin(2 pi y/Ly) + 0.5,

@@ -18,6 +18,7 @@
 #include "levelset/PrescribedFlow.hpp"
 #include "vof/Plic.hpp"
 #include "vof/Vof.hpp"
+#include "../helpers.hpp"
 
 namespace ls = gf::levelset;
 namespace vof = gf::vof;
@@ -26,15 +27,7 @@ using gf::Grid;
 
 namespace {
 
-template <class F>
-void fill(const Grid& g, Vec v, const F& f) {
-  const gf::Box& b = g.box();
-  PetscScalar** a;
-  DMDAVecGetArray(g.dm_cell(), v, &a);
-  for (PetscInt j = b.ys; j < b.ye(); ++j)
-    for (PetscInt i = b.xs; i < b.xe(); ++i) a[j][i] = f(b.xc(i), b.yc(j));
-  DMDAVecRestoreArray(g.dm_cell(), v, &a);
-}
+using gf::test::fill_cells;
 
 double vec_min(Vec v) {
   PetscReal m;
@@ -49,32 +42,7 @@ double vec_max(Vec v) {
 
 // Max |a - b| between a WORLD Vec (DMDA ordering) and a SELF Vec of the same grid.
 double max_diff(const Grid& gw, Vec world, Vec self) {
-  Vec nat, all;
-  VecScatter sc;
-  DMDACreateNaturalVector(gw.dm_cell(), &nat);
-  DMDAGlobalToNaturalBegin(gw.dm_cell(), world, INSERT_VALUES, nat);
-  DMDAGlobalToNaturalEnd(gw.dm_cell(), world, INSERT_VALUES, nat);
-  VecScatterCreateToAll(nat, &sc, &all);
-  VecScatterBegin(sc, nat, all, INSERT_VALUES, SCATTER_FORWARD);
-  VecScatterEnd(sc, nat, all, INSERT_VALUES, SCATTER_FORWARD);
-  const PetscScalar *a, *s;
-  PetscInt n, m;
-  VecGetLocalSize(all, &n);
-  VecGetLocalSize(self, &m);
-  EXPECT_EQ(n, m);
-  VecGetArrayRead(all, &a);
-  VecGetArrayRead(self, &s);
-  double d = 0;
-  for (PetscInt k = 0; k < std::min(n, m); ++k) {
-    d = std::max(d, std::abs(a[k] - s[k]));
-    if (!std::isfinite(a[k]) || !std::isfinite(s[k])) d = INFINITY;
-  }
-  VecRestoreArrayRead(self, &s);
-  VecRestoreArrayRead(all, &a);
-  VecScatterDestroy(&sc);
-  VecDestroy(&all);
-  VecDestroy(&nat);
-  return d;
+  return gf::test::world_vs_self(gw.dm_cell(), world, self).max_abs;
 }
 
 }  // namespace
@@ -154,7 +122,7 @@ TEST(VofTransport, ConservesVolumeAndBoundsUnderSolenoidalVelocity) {
                       ls::circle_distance(x, y, 0.6, 0.7, 0.15));
     };
     vof::init_fraction(g, c, d);
-    fill(g, phi, d);
+    fill_cells(g, phi, d);
     const double v0 = vof::volume(g, c);
     vof::Advector adv(g);
     ls::Advector phi_adv(g);
@@ -191,7 +159,7 @@ TEST(VofTransport, VerticalBandTranslatesExactly) {
   auto d = [](double x, double) { return std::abs(x - 0.41) - 0.173; };  // a band 0.346 wide
   vof::init_fraction(g, c, d);
   VecCopy(c, c0);
-  fill(g, phi, d);
+  fill_cells(g, phi, d);
   VecSet(vel, 0.0);
   {
     const gf::Box& b = g.box();
@@ -231,7 +199,7 @@ TEST(VofTransport, ZalesakOneTurnBeatsTheLevelSet) {
   auto d = [](double x, double y) {
     return ls::zalesak_distance(x, y, 0.5, 0.75, 0.15, 0.05, 0.25);
   };
-  fill(g, phi0, d);
+  fill_cells(g, phi0, d);
   VecCopy(phi0, phi);
   VecCopy(phi0, ls_phi);
   vof::init_fraction(g, c, d);
@@ -270,7 +238,7 @@ TEST(VofRebuild, CircleDistance) {
   const double R = 0.27;
   auto d = [&](double x, double y) { return ls::circle_distance(x, y, 0.48, 0.53, R); };
   vof::init_fraction(g, c, d);
-  fill(g, phi, d);
+  fill_cells(g, phi, d);
   vof::rebuild_distance(g, c, phi, vof::Normals::LevelSet);
   const gf::Box& b = g.box();
   const double h = b.hx;
@@ -304,7 +272,7 @@ TEST(VofParallel, SameResultAsSerial) {
                         ls::circle_distance(x, y, 0.6, 0.7, 0.15));
       };
       vof::init_fraction(g, c, d);
-      fill(g, phi, d);
+      fill_cells(g, phi, d);
       Field vel(g.dm_vel(), "vel");
       vof::Advector adv(g);
       ls::Advector phi_adv(g);
