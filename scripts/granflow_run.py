@@ -371,6 +371,20 @@ def read_vtr(path):
     return Fields(xn, yn, arrays, t, path)
 
 
+def bottom_toes(path):
+    """The granular phase's two toes on the bottom wall in the VTK file `path`: (t in s,
+    left toe x in m, right toe x in m, cell width in m). phi is extrapolated linearly from the
+    two lowest cell rows to the wall and its zero crossings interpolated between columns."""
+    f = read_vtr(path)
+    phi, x = f["phi"], f.xc
+    pb = 1.5 * phi[0] - 0.5 * phi[1]  # phi extrapolated to the bottom
+    k = np.where(pb < 0)[0]
+    i0, i1 = k[0], k[-1]
+    xl = x[i0 - 1] + (x[i0] - x[i0 - 1]) * pb[i0 - 1] / (pb[i0 - 1] - pb[i0])
+    xr = x[i1] + (x[i1 + 1] - x[i1]) * pb[i1] / (pb[i1] - pb[i1 + 1])
+    return f.t, xl, xr, x[1] - x[0]
+
+
 def read_pvd(path, join=True):
     """[(t, path of the file)] of a ParaView collection, in the file's order (join=False: the
     file names as listed, relative to the collection's folder)."""

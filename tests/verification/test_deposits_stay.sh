@@ -37,15 +37,7 @@ import numpy as np
 tmp = sys.argv[1]
 ok = True
 
-def toes(path):
-    f = gr.read_vtr(path)
-    phi, x = f["phi"], f.xc
-    pb = 1.5 * phi[0] - 0.5 * phi[1]  # phi extrapolated to the bottom
-    k = np.where(pb < 0)[0]
-    i0, i1 = k[0], k[-1]
-    xl = x[i0 - 1] + (x[i0] - x[i0 - 1]) * pb[i0 - 1] / (pb[i0 - 1] - pb[i0])
-    xr = x[i1] + (x[i1 + 1] - x[i1]) * pb[i1] / (pb[i1] - pb[i1 + 1])
-    return f.t, xl, xr, x[1] - x[0]
+toes = gr.bottom_toes
 
 d = gr.read_csv(os.path.join(tmp, "pile", "diagnostics.csv"))
 vtr = sorted(glob.glob(os.path.join(tmp, "pile", "fields_*.vtr")))
