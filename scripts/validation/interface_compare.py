@@ -9,7 +9,7 @@ furthest front, back-wall height, stage times, peak granular pressure over rho_s
 largest relative change of the granular volume in any diagnostics row and at the end, what the
 front receded after its furthest position (in cells), the runout minus the furthest front (in
 cells); for the pile its toes' displacement over the run (in h); and the runout of case A at
-n = 32, 64, 128 with its observed order of convergence, per method.
+n = 32, 64, 128 (and 256 where run) with its observed order of convergence, per method.
 """
 import glob
 import json
@@ -116,21 +116,26 @@ def main(argv):
             L.append(f"| {name} | {m} | {t0:g} | {t1:g} | {dl:+.3f} | {dr:+.3f} | "
                      f"{q['vg_all']:.1e} | {q['vg_late']:.1e} | {q['vg_end']:.1e} | "
                      f"{q['dv_max']:.1e} |")
-    L += ["\nCase A's runout against the grid (n = 32, 64, 128), observed order "
-          "p = log2((R32 - R64) / (R64 - R128)):\n",
-          "| method | R(32) | R(64) | R(128) | R64 - R32 | R128 - R64 | p |", "|---|---|---|---|---|---|---|"]
+    grids = (32, 64, 128, 256)
+    L += ["\nCase A's runout against the grid (n = 32, 64, 128, 256 where run), observed order of "
+          "each three successive grids p = log2((R_n - R_2n) / (R_2n - R_4n)):\n",
+          "| method | " + " | ".join(f"R({n})" for n in grids) + " | differences | p |",
+          "|---|" + "---|" * len(grids) + "---|---|"]
     for m in METHODS:
-        R = [runs.get((f"a_n{n}", m), {}).get("s", {}).get("runout_m") for n in (32, 64, 128)]
+        R = [runs.get((f"a_n{n}", m), {}).get("s", {}).get("runout_m") for n in grids]
         if all(r is None for r in R):
             continue
-        d1 = R[1] - R[0] if None not in R[:2] else None
-        d2 = R[2] - R[1] if None not in R[1:] else None
-        p = (math.log2(d1 / d2) if d1 is not None and d2 is not None and d1 * d2 > 0
-             else None)
-        ptxt = ("not monotone: no order" if d1 is not None and d2 is not None and d1 * d2 <= 0
-                else f(p, '.2f'))
-        L.append(f"| {m} | {f(R[0], '.4f')} | {f(R[1], '.4f')} | {f(R[2], '.4f')} | "
-                 f"{f(d1, '+.4f')} | {f(d2, '+.4f')} | {ptxt} |")
+        d = [R[k + 1] - R[k] if R[k] is not None and R[k + 1] is not None else None
+             for k in range(len(R) - 1)]
+        ps = []
+        for k in range(len(d) - 1):
+            if d[k] is None or d[k + 1] is None:
+                continue
+            ps.append(f"{math.log2(d[k] / d[k + 1]):.2f}" if d[k] * d[k + 1] > 0
+                      else f"not monotone ({grids[k]}-{grids[k + 2]})")
+        L.append(f"| {m} | " + " | ".join(f(r, '.4f') for r in R) + " | "
+                 + ", ".join(f(x, '+.4f') for x in d if x is not None) + " | "
+                 + ("; ".join(ps) if ps else "–") + " |")
     with open(argv[2], "w") as fh:
         fh.write("\n".join(L) + "\n")
     print(f"interface_compare.py: wrote {argv[2]} ({len(runs)} runs)")

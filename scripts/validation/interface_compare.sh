@@ -3,7 +3,8 @@
 # mu(I)), case B, the sand column on a 20 deg plane (cases/incline_column.toml) and the 20 deg
 # pile with the default settings (cases/verify/pile_default.toml), with interface.method =
 # "clsvof" (the default) and "level_set" (the paper's scheme), one run after the other on one
-# rank (nice), into runs/interface/<name>_<method>/ (b_n64_Lx2: case B in a 2 m long channel, for
+# rank (nice; a_n256 on 2 ranks, about 45 min each on this 2-core machine), into
+# runs/interface/<name>_<method>/ (b_n64_Lx2: case B in a 2 m long channel, for
 # a front that reaches case B's far wall at x = 1.38 m); then scripts/validation/interface_compare.py
 # writes docs/interface_compare.md from whatever runs exist.
 #
@@ -34,15 +35,22 @@ RUNS=(
   "b_n128|cases/ar2_smooth.toml|--set grid.n=128 $novtk"
   "a_mui_n128|cases/ar07_rough_mui.toml|--set grid.n=128 $novtk"
   "a_hp_n128|cases/ar07_rough_hp.toml|--set grid.n=128 $novtk"
+  "a_n256|cases/ar07_rough.toml|--set grid.n=256 $novtk|2"
 )
 [[ -n "${LIST:-}" || -x "$gf" ]] || "$root/scripts/build.sh" || exit 1
 mkdir -p "$out_root"
 for r in "${RUNS[@]}"; do
-  IFS='|' read -r name case opts <<<"$r"
+  IFS='|' read -r name case opts ranks <<<"$r"
+  ranks="${ranks:-1}"
   if [[ -n "${ONLY:-}" && " $ONLY " != *" $name "* ]]; then continue; fi
   for m in $methods; do
     out="$out_root/${name}_$m"
     cmd="granflow run $case --out ${out#$root/} $opts --set interface.method=$m"
+    launch=(nice "$gf")
+    if [[ "$ranks" -gt 1 ]]; then
+      cmd="mpirun -n $ranks $cmd"
+      launch=(nice mpirun -n "$ranks" "$gf")
+    fi
     if [[ -n "${LIST:-}" ]]; then echo "$cmd"; continue; fi
     if [[ -z "${FORCE:-}" ]] && grep -qs '"status": "completed"' "$out/summary.json"; then
       echo "skip $out (completed)"; continue
@@ -50,7 +58,7 @@ for r in "${RUNS[@]}"; do
     echo "run  $cmd"
     start=$SECONDS
     # shellcheck disable=SC2086
-    nice "$gf" run "$root/$case" --out "$out" --overwrite $opts --set "interface.method=$m" \
+    "${launch[@]}" run "$root/$case" --out "$out" --overwrite $opts --set "interface.method=$m" \
       --set output.progress_interval=60 > "$out.log" 2>&1
     echo "     exit $?, $((SECONDS - start)) s"
   done
