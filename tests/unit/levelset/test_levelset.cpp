@@ -13,24 +13,17 @@
 #include "levelset/Heaviside.hpp"
 #include "levelset/LevelSet.hpp"
 #include "levelset/PrescribedFlow.hpp"
+#include "../helpers.hpp"
 
 namespace ls = gf::levelset;
 using gf::Box;
 using gf::Field;
 using gf::Grid;
+using gf::test::fill_cells;
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-void fill_cells(const Grid& g, Vec v, const std::function<double(double, double)>& f) {
-  const Box& b = g.box();
-  PetscScalar** a;
-  DMDAVecGetArray(g.dm_cell(), v, &a);
-  for (PetscInt j = b.ys; j < b.ye(); ++j)
-    for (PetscInt i = b.xs; i < b.xe(); ++i) a[j][i] = f(b.xc(i), b.yc(j));
-  DMDAVecRestoreArray(g.dm_cell(), v, &a);
-}
 
 // Constant velocity (U, V) on every interior face, zero on the walls.
 void constant_velocity(const Grid& g, Vec vel, double U, double V) {
