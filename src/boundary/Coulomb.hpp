@@ -19,6 +19,7 @@
 #include <array>
 
 #include "boundary/Boundary.hpp"
+#include "boundary/SideWalls.hpp"
 #include "grid/Grid.hpp"
 
 namespace gf::boundary {
@@ -34,6 +35,7 @@ inline double project_b(double s) { return std::clamp(s, -1.0, 1.0); }
 struct WallContact {
   std::array<double, 4> stick_m{0, 0, 0, 0}, slide_m{0, 0, 0, 0};
   std::array<double, 4> normal_N{0, 0, 0, 0}, friction_N{0, 0, 0, 0};
+  SideContact side;  // the side walls of a channel (boundary/SideWalls.hpp)
 };
 
 class CoulombWalls {

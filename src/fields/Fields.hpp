@@ -39,6 +39,8 @@ struct State {
   Field S_node;   // dm_node, the node copy of S (rheology.plastic_grid = "cell_node"), else 0
   Field s_wall;   // dm_vel, dimensionless, |s_t| <= 1: Coulomb wall stress direction (eq. 30),
                   // stored on the wall faces (momentum/Momentum.hpp, wall storage)
+  Field s_side;   // dm_vel read as a cell-centred vector, |s| <= 1: the direction of the side
+                  // walls' friction (boundary/SideWalls.hpp); 0 without side walls
   // Derived from phi (refreshed by the stepper): density and viscosity at cell centres.
   Field rho;      // dm_cell, kg/m^3, eq. 25
   Field eta;      // dm_cell, Pa s, harmonic mean with the height fraction (section 3.1)

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "boundary/Coulomb.hpp"
+#include "boundary/SideWalls.hpp"
 #include "core/Error.hpp"
 #include "core/Log.hpp"
 #include "core/Profile.hpp"
@@ -22,10 +23,13 @@ FixedPoint::FixedPoint(const Grid& g, Predictor& pred, const rheology::Params& r
   if (rheo_.node_copy)
     for (Vec* v : {&Dn_, &Sn_n_, &gSn_}) GF_PETSC(DMCreateGlobalVector(g.dm_node(), v));
   if (opt_.monitor || rheo_.fp_tol_u > 0) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &u_prev_));
+  if (pred.side_walls().active())
+    for (Vec* v : {&sd_n_, &gSd_, &zx_, &zg_}) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), v));
 }
 
 FixedPoint::~FixedPoint() {
-  for (Vec* v : {&S_n_, &sw_n_, &gS_, &gW_, &Dn_, &Sn_n_, &gSn_, &D_, &rhs_, &u_prev_})
+  for (Vec* v : {&S_n_, &sw_n_, &gS_, &gW_, &Dn_, &Sn_n_, &gSn_, &D_, &rhs_, &u_prev_, &sd_n_,
+                 &gSd_, &zx_, &zg_})
     VecDestroy(v);
 }
 
@@ -35,7 +39,13 @@ FixedPointStats FixedPoint::solve(State& s, const PlasticInputs& in, Vec rhs0, V
   GF_PETSC(VecCopy(s.S, S_n_));
   GF_PETSC(VecCopy(s.s_wall, sw_n_));
   if (rheo_.node_copy) GF_PETSC(VecCopy(s.S_node, Sn_n_));
-  if (anderson_) anderson_->set_active(anderson_active(in.kappa));
+  if (side()) {
+    GF_PETSC(VecCopy(s.s_side, sd_n_));
+    PetscReal km;
+    GF_PETSC(VecMax(in.kappa_side, nullptr, &km));
+    k_max_ = km;
+  }
+  if (anderson_) anderson_->set_active(anderson_active(in.kappa, in.kappa_side));
   // The plastic terms and D(u~) only where the granular phase is (kappa > 0 or phi < 0),
   // widened by 2 cells for the stencils of the faces, nodes and wall extrapolations around
   // it: in case A that is 20-50 % of the domain.
@@ -67,6 +77,7 @@ FixedPointStats FixedPoint::solve(State& s, const PlasticInputs& in, Vec rhs0, V
       GF_PETSC(VecCopy(gS_, s.S));
       GF_PETSC(VecCopy(gW_, s.s_wall));
       if (rheo_.node_copy) GF_PETSC(VecCopy(gSn_, s.S_node));
+      if (side()) GF_PETSC(VecCopy(gSd_, s.s_side));
       if (done) {
         st.converged = true;
         break;
@@ -94,6 +105,7 @@ int FixedPoint::viscous_solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u
   {
     prof::Scope ps(prof::Plastic);
     pred_.add_plastic(in.kappa, s.S, in.kappa_b, s.s_wall, rhs_, node ? s.S_node.vec() : nullptr);
+    if (side()) pred_.side_walls().add_force(in.kappa_side, s.s_side, rhs_);
   }
   const bool track_u = opt_.monitor || rheo_.fp_tol_u > 0;
   if (track_u) GF_PETSC(VecCopy(u_tilde, u_prev_));
@@ -142,18 +154,24 @@ double FixedPoint::project(State& s, const PlasticInputs& in, Vec u_tilde, doubl
     ch = std::max(ch, walls.update(u_tilde, in.kappa_b, gW_, sw_n_, s.rho, s.eta, a0dt, theta,
                                    rheo_.r_factor));
   }
+  if (side()) {
+    GF_PETSC(VecCopy(s.s_side, gSd_));
+    if (k_max_ > 0)
+      ch = std::max(ch, pred_.side_walls().update(u_tilde, in.kappa_side, gSd_, sd_n_, s.rho,
+                                                  s.eta, a0dt, theta, rheo_.r_factor, k_max_));
+  }
   return ch;
 }
 
 void FixedPoint::accelerate(State& s, const PlasticInputs& in) {
   // Anderson mixing of the last iterates, then back into |S| <= 1, |s_t| <= 1.
   prof::Scope ps(prof::Anderson);
-  if (rheo_.node_copy) {
-    anderson_->update({s.S, s.s_wall, s.S_node}, {gS_, gW_, gSn_});
-    rheology::project_field_node(g_, s.S_node, in.kappa);
-  } else {
-    anderson_->update({s.S, s.s_wall}, {gS_, gW_});
-  }
+  std::vector<Vec> x, gx;
+  blocks(s, x, gx);
+  if (side()) to_force(in.kappa_side, s.s_side, gSd_);
+  anderson_->update(x, gx);
+  if (side()) from_force(in.kappa_side, s.s_side);
+  if (rheo_.node_copy) rheology::project_field_node(g_, s.S_node, in.kappa);
   rheology::project_field(g_, s.S, in.kappa);
   PetscInt n;
   PetscScalar* w;
@@ -161,6 +179,67 @@ void FixedPoint::accelerate(State& s, const PlasticInputs& in) {
   GF_PETSC(VecGetArray(s.s_wall, &w));
   for (PetscInt q = 0; q < n; ++q) w[q] = boundary::project_b(w[q]);
   GF_PETSC(VecRestoreArray(s.s_wall, &w));
+  if (side()) {  // each cell's (s_x, s_y) back into the unit disc
+    GF_PETSC(VecGetLocalSize(s.s_side, &n));
+    GF_PETSC(VecGetArray(s.s_side, &w));
+    for (PetscInt q = 0; q + 1 < n; q += 2) boundary::project_disc(w[q], w[q + 1]);
+    GF_PETSC(VecRestoreArray(s.s_side, &w));
+  }
+}
+
+void FixedPoint::blocks(State& s, std::vector<Vec>& x, std::vector<Vec>& gx) {
+  x = {s.S, s.s_wall};
+  gx = {gS_, gW_};
+  if (rheo_.node_copy) {
+    x.push_back(s.S_node);
+    gx.push_back(gSn_);
+  }
+  if (side()) {
+    x.push_back(zx_);
+    gx.push_back(zg_);
+  }
+}
+
+void FixedPoint::to_force(Vec k, Vec sx, Vec sg) {
+  const PetscScalar *kc, *a, *b;
+  PetscScalar *zx, *zg;
+  PetscInt len;
+  GF_PETSC(VecGetLocalSize(k, &len));
+  GF_PETSC(VecGetArrayRead(k, &kc));
+  GF_PETSC(VecGetArrayRead(sx, &a));
+  GF_PETSC(VecGetArrayRead(sg, &b));
+  GF_PETSC(VecGetArray(zx_, &zx));
+  GF_PETSC(VecGetArray(zg_, &zg));
+  for (PetscInt c = 0; c < len; ++c) {
+    const double w = k_max_ > 0 ? kc[c] / k_max_ : 0.0;
+    for (PetscInt q = 2 * c; q < 2 * c + 2; ++q) {
+      zx[q] = w * a[q];
+      zg[q] = w * b[q];
+    }
+  }
+  GF_PETSC(VecRestoreArray(zg_, &zg));
+  GF_PETSC(VecRestoreArray(zx_, &zx));
+  GF_PETSC(VecRestoreArrayRead(sg, &b));
+  GF_PETSC(VecRestoreArrayRead(sx, &a));
+  GF_PETSC(VecRestoreArrayRead(k, &kc));
+}
+
+void FixedPoint::from_force(Vec k, Vec sx) {
+  const PetscScalar *kc, *zx;
+  PetscScalar* a;
+  PetscInt len;
+  GF_PETSC(VecGetLocalSize(k, &len));
+  GF_PETSC(VecGetArrayRead(k, &kc));
+  GF_PETSC(VecGetArrayRead(zx_, &zx));
+  GF_PETSC(VecGetArray(sx, &a));
+  for (PetscInt c = 0; c < len; ++c) {
+    const double w = k_max_ > 0 ? kc[c] / k_max_ : 0.0;
+    a[2 * c] = w > 0 ? zx[2 * c] / w : 0.0;
+    a[2 * c + 1] = w > 0 ? zx[2 * c + 1] / w : 0.0;
+  }
+  GF_PETSC(VecRestoreArray(sx, &a));
+  GF_PETSC(VecRestoreArrayRead(zx_, &zx));
+  GF_PETSC(VecRestoreArrayRead(k, &kc));
 }
 
 void FixedPoint::report(long long step, int k, double ch, double du, double un, Vec S) const {
@@ -192,10 +271,10 @@ void FixedPoint::report(long long step, int k, double ch, double du, double un, 
   log::message(line);
 }
 
-std::vector<std::vector<PetscInt>> FixedPoint::anderson_active(Vec kappa) const {
+std::vector<std::vector<PetscInt>> FixedPoint::anderson_active(Vec kappa, Vec kappa_side) const {
   const Box& b = g_.box();
   const bool node = rheo_.node_copy;
-  std::vector<std::vector<PetscInt>> idx(node ? 3 : 2);
+  std::vector<std::vector<PetscInt>> idx((node ? 3 : 2) + (side() ? 1 : 0));
   const PetscScalar *k, *sn, *wn;
   GF_PETSC(VecGetArrayRead(kappa, &k));
   GF_PETSC(VecGetArrayRead(S_n_, &sn));
@@ -217,6 +296,21 @@ std::vector<std::vector<PetscInt>> FixedPoint::anderson_active(Vec kappa) const 
     GF_PETSC(VecGetLocalSize(gSn_, &len));
     idx[2].resize(len);
     for (PetscInt q = 0; q < len; ++q) idx[2][q] = q;
+  }
+  if (side()) {  // s_side where the side walls' friction acts or s_side^n is not zero
+    const PetscScalar *ks, *dn;
+    PetscInt len;
+    GF_PETSC(VecGetLocalSize(kappa_side, &len));
+    GF_PETSC(VecGetArrayRead(kappa_side, &ks));
+    GF_PETSC(VecGetArrayRead(sd_n_, &dn));
+    std::vector<PetscInt>& d = idx.back();
+    for (PetscInt c = 0; c < len; ++c)
+      if (ks[c] > 0 || dn[2 * c] != 0 || dn[2 * c + 1] != 0) {
+        d.push_back(2 * c);
+        d.push_back(2 * c + 1);
+      }
+    GF_PETSC(VecRestoreArrayRead(sd_n_, &dn));
+    GF_PETSC(VecRestoreArrayRead(kappa_side, &ks));
   }
   return idx;
 }

@@ -5,7 +5,10 @@
 //   1. solves A u~ = rhs0 + div(kappa S_k) - kappa_b s_t,k        (the viscous solve, eq. 31)
 //   2. projects S_{k+1}   = P  (S_k   + r   kappa   D(u~) + theta (S^n   - S_k))   (eqs. 29, 31)
 //               s_t,k+1   = P_b(s_t,k + r_b kappa_b u~_t + theta (s_t^n - s_t,k)) (eqs. 30, 31)
-//      with kappa_b = tan(alpha_b) (-T_n)^+ refreshed from the current D(u~) and S (eq. 22);
+//      with kappa_b = tan(alpha_b) (-T_n)^+ refreshed from the current D(u~) and S (eq. 22),
+//      and with the side walls of a channel (boundary/SideWalls.hpp) their friction direction
+//               s_side,k+1 = P(s_side,k + r k I u~ + theta (s_side^n - s_side,k)) on the disc
+//      (its force -I^T k s_side is in step 1's right-hand side);
 //   3. stops when max |S_{k+1} - S_k|, |s_t,k+1 - s_t,k| < fp_tol (or the velocity changes by less
 //      than fp_tol_u), after fp_max_iter iterations otherwise (a capped step);
 //   4. otherwise accelerates: Anderson mixing of the last iterates (linsolve/Anderson.hpp, depth
@@ -56,6 +59,9 @@ struct PlasticInputs {
   Vec rho_r;     // dm_cell: rho and eta for the augmentation r (rheology::neighbourhood_min)
   Vec eta_r;
   Vec granular;  // dm_cell: -1 on the cells with kappa > 0 or phi < 0, 0 elsewhere
+  // dm_cell, N/m^3: the side walls' friction bound k (boundary/SideWalls.hpp); null without
+  // side walls.
+  Vec kappa_side = nullptr;
 };
 
 class FixedPoint {
@@ -83,10 +89,24 @@ class FixedPoint {
   Vec S_n_ = nullptr, sw_n_ = nullptr, gS_ = nullptr, gW_ = nullptr;
   Vec Dn_ = nullptr, Sn_n_ = nullptr, gSn_ = nullptr;
   Vec D_ = nullptr, rhs_ = nullptr, u_prev_ = nullptr;
+  // The side walls' s^n and G(x) (dm_vel, cell-centred vectors); null without side walls.
+  // Anderson mixes them as the forces they make, z = (k / k_max) s (zx_, zg_), so that the
+  // directions of cells with a small load, which flip at no cost in force, do not steer the
+  // mixing (SideWalls::update); k_max_: the largest k of the step.
+  Vec sd_n_ = nullptr, gSd_ = nullptr, zx_ = nullptr, zg_ = nullptr;
+  double k_max_ = 0;
+  bool side() const { return sd_n_ != nullptr; }
+  // Anderson's blocks in the order of anderson_active(): (S, s_t[, S_node][, s_side]).
+  void blocks(State& s, std::vector<Vec>& x, std::vector<Vec>& gx);
+  // zx_ = (k / k_max) sx and zg_ = (k / k_max) sg; from_force: sx = zx_ / (k / k_max) (0 where
+  // k = 0), before the re-projection into the disc.
+  void to_force(Vec k, Vec sx, Vec sg);
+  void from_force(Vec k, Vec sx);
   // The entries of (S, s_t[, S_node]) that can be non-zero in this step's fixed point, as local
   // indices per block (Anderson::set_active): S where kappa > 0 or S^n != 0, s_t on the wall
-  // faces (or where s_t^n != 0), the node copy everywhere.
-  std::vector<std::vector<PetscInt>> anderson_active(Vec kappa) const;
+  // faces (or where s_t^n != 0), the node copy everywhere, s_side where kappa_side > 0 or
+  // s_side^n != 0.
+  std::vector<std::vector<PetscInt>> anderson_active(Vec kappa, Vec kappa_side) const;
   // Limits the plastic terms and D(u~) to the granular cells widened by 2 cells
   // (Predictor::set_plastic_region); collective.
   void set_plastic_region(Vec granular);

@@ -21,8 +21,9 @@ TimeCoeffs TimeCoeffs::make(double dt, double dt_old, bool first) {
   return c;
 }
 
-Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol)
-    : g_(g), bc_(bc), walls_(g, bc) {
+Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol,
+                     const boundary::SideWallParams& side)
+    : g_(g), bc_(bc), walls_(g, bc), side_(g, side) {
   // Preallocate only: the box stencil of dm_visc reserves 18 slots per row but a row has 9
   // entries; explicit zeros in the pattern would make BoomerAMG's coarse operators needlessly
   // dense (measured: 4x slower V-cycles). The first assembly fixes the true pattern.
@@ -58,7 +59,7 @@ Predictor::Predictor(const Grid& g, const Boundaries& bc, double rtol)
 
 Predictor::~Predictor() {
   for (Vec* v : {&wall_rhs_, &conv_, &conv_old_, &lrho_, &leta_, &letan_, &lp_, &lvel_,
-                 &lvel_old_, &ladv_, &lflux_, &lca_, &lcb_, &lcc_})
+                 &lvel_old_, &ladv_, &lflux_, &lca_, &lcb_, &lcc_, &ldrag_})
     VecDestroy(v);
   end_local();
   VecDestroy(&work_);
@@ -77,6 +78,12 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), leta_, &ec));
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), letan_, &en));
   GF_PETSC(DMDAVecGetArray(g_.dm_vel(), wall_rhs_, &wr));
+  const PetscScalar** dr = nullptr;  // set_drag
+  if (drag_) {
+    if (!ldrag_) GF_PETSC(DMCreateLocalVector(g_.dm_cell(), &ldrag_));
+    to_local(g_.dm_cell(), drag_, ldrag_);
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), ldrag_, &dr));
+  }
   const boundary::CoulombWalls::Phase phase(walls_);
   const PetscScalar* const* ph = phase.array();
   // A granular face on a frictional wall has the Coulomb traction instead (add_plastic).
@@ -104,6 +111,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
       } else {
         n = 0;
         double diag = a0dt * ops::rho_xface(r, i, j);
+        if (dr) diag += 0.5 * (dr[j][i - 1] + dr[j][i]);
         // normal stress 2 eta du/dx at the centres of cells i-1 and i (periodic x: the
         // columns -1 / nx wrap in MatSetValuesStencil, cell i-1 = -1 is a ghost)
         diag += 2 * (ec[j][i] + ec[j][i - 1]) / hx2;
@@ -148,6 +156,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
       } else {
         n = 0;
         double diag = a0dt * ops::rho_yface(r, i, j);
+        if (dr) diag += 0.5 * (dr[j - 1][i] + dr[j][i]);
         diag += 2 * (ec[j][i] + ec[j - 1][i]) / hy2;
         if (j + 1 < b.ny) add(i, j + 1, 1, -2 * ec[j][i] / hy2);
         if (j - 1 >= 1) add(i, j - 1, 1, -2 * ec[j - 1][i] / hy2);
@@ -182,6 +191,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
       }
     }
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), wall_rhs_, &wr));
+  if (dr) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), ldrag_, &dr));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), letan_, &en));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), leta_, &ec));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));

@@ -22,6 +22,7 @@
 
 #include "boundary/Boundary.hpp"
 #include "boundary/Coulomb.hpp"
+#include "boundary/SideWalls.hpp"
 #include "grid/Grid.hpp"
 #include "linsolve/Krylov.hpp"
 
@@ -47,7 +48,8 @@ struct MassSweeps {
 
 class Predictor {
  public:
-  Predictor(const Grid& g, const Boundaries& bc, double rtol);
+  Predictor(const Grid& g, const Boundaries& bc, double rtol,
+            const boundary::SideWallParams& side = {});
   ~Predictor();
   Predictor(const Predictor&) = delete;
   Predictor& operator=(const Predictor&) = delete;
@@ -57,6 +59,10 @@ class Predictor {
   // interior nodes (i hx, j hy), 1 <= i < nx (0 <= i < nx with periodic x), 1 <= j < ny,
   // stored at (i, j).
   void assemble(Vec rho, Vec eta, Vec eta_node, double a0_over_dt);
+  // A linear drag d u on the faces (Pa s/m^2; dm_cell Vec, a face takes the mean of its two
+  // cells), implicit in the operator from the next assemble() on: the air's Navier slip on the
+  // side walls of a channel (boundary/SideWalls.hpp). Null: none.
+  void set_drag(Vec drag) { drag_ = drag; }
 
   // The explicit part of the right-hand side: history, convection, -grad p^n, gravity and the
   // moving-wall terms. Result in rhs (global dm_vel Vec).
@@ -109,6 +115,9 @@ class Predictor {
   // (add_plastic) instead of its wall condition.
   boundary::CoulombWalls& walls() { return walls_; }
   const boundary::CoulombWalls& walls() const { return walls_; }
+  // The side walls of a channel (boundary/SideWalls.hpp): their friction is a body force the
+  // fixed point adds with add_force and projects with update.
+  const boundary::SideWalls& side_walls() const { return side_; }
   // rhs += div(kappa S) on the faces, plus the Coulomb wall tractions -kappa_b s_t.
   // kappa: cell yield stress (Pa); S: dm_ten (Sxx, Sxy, Syy); kappa_b, s_wall: dm_vel wall
   // storage (boundary/Coulomb.hpp).
@@ -162,6 +171,8 @@ class Predictor {
   // transport(): the ghosted advecting velocity, fluxes and fractions.
   Vec ladv_ = nullptr, lflux_ = nullptr, lca_ = nullptr, lcb_ = nullptr, lcc_ = nullptr;
   boundary::CoulombWalls walls_;
+  boundary::SideWalls side_;
+  Vec drag_ = nullptr, ldrag_ = nullptr;  // set_drag (not owned) and its ghosted copy
 };
 
 }  // namespace gf::momentum

@@ -74,6 +74,14 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.normals = c.interface.normals;
   for (int sd = 0; sd < 4; ++sd)
     p.wall_tan_b[sd] = c.walls[sd].friction_angle_deg > 0 ? c.walls[sd].tan_friction() : 0.0;
+  const auto& sw = c.side_walls;
+  p.side.width = sw.width;
+  p.side.tan_w = sw.friction_angle_deg > 0 ? sw.tan_friction() : 0.0;
+  p.side.earth_pressure = sw.earth_pressure;
+  p.side.hydrostatic = sw.hydrostatic;
+  // The air's drag only in a two-phase run (in a one-phase run every cell is granular).
+  p.side.eta_b = c.levelset.enabled ? sw.eta_b : 0.0;
+  p.side.eta_air = c.air.eta;
   return p;
 }
 

@@ -33,7 +33,7 @@ bool CaseConfig::operator==(const CaseConfig& o) const {
   return title == o.title && domain == o.domain && nx == o.nx && ny == o.ny && hx == o.hx &&
          hy == o.hy && time == o.time && gravity == o.gravity && granular == o.granular &&
          air == o.air && rheology == o.rheology && levelset == o.levelset && interface == o.interface && initial == o.initial &&
-         flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && output == o.output && collapse == o.collapse &&
+         flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && side_walls == o.side_walls && output == o.output && collapse == o.collapse &&
          solver == o.solver &&
          probes == o.probes;
 }
@@ -151,6 +151,11 @@ CaseConfig fill(const Params& p) {
     c.walls[s].friction_angle_deg = p.get_real(b + "friction_angle");
   }
   c.periodic_x = p.get_bool("boundary.periodic_x");
+  c.side_walls.width = p.get_real("boundary.side_walls.width");
+  c.side_walls.friction_angle_deg = p.get_real("boundary.side_walls.friction_angle");
+  c.side_walls.earth_pressure = p.get_real("boundary.side_walls.earth_pressure");
+  c.side_walls.eta_b = p.get_real("boundary.side_walls.eta_b");
+  c.side_walls.hydrostatic = p.get_string("boundary.side_walls.normal_stress") == "hydrostatic";
 
   c.output.interval = p.get_real("output.interval");
   c.output.vtk_interval = p.get_real("output.vtk_interval");

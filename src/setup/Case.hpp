@@ -184,6 +184,16 @@ struct CaseConfig {
   Flow flow;
   std::array<WallConfig, 4> walls{};  // indexed by Side
   bool periodic_x = false;            // boundary.periodic_x: no left/right walls, x repeats
+  // boundary.side_walls: the channel's side walls (boundary/SideWalls.hpp).
+  struct SideWalls {
+    double width = 0;               // m, 0 = none
+    double friction_angle_deg = 0;  // degrees, 0 = none
+    double earth_pressure = 1;      // -, K
+    bool hydrostatic = false;       // normal_stress = "hydrostatic": K p_hyd instead of K p
+    double eta_b = 0;               // Pa s/m, the air's Navier coefficient
+    double tan_friction() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
+    bool operator==(const SideWalls&) const = default;
+  } side_walls;
   Output output;
   Collapse collapse;
   Solver solver;

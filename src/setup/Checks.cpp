@@ -394,6 +394,18 @@ void CaseChecks::walls() {
       c.warnings.push_back(b + "eta_b is set but " + b + "type = " + to_string(c.walls[s].type) +
                            " does not use it");
   }
+  // The side walls: a friction angle without a width would be physics silently dropped.
+  const std::string sw = "boundary.side_walls.";
+  if (ok({sw + "width", sw + "friction_angle"}) && c.side_walls.width == 0 &&
+      c.side_walls.friction_angle_deg > 0)
+    errors.add(p.where(sw + "friction_angle") + ": " + sw + "friction_angle = " +
+               format_number(c.side_walls.friction_angle_deg) + " deg needs the channel's width: " +
+               "set " + sw + "width > 0 (m), or friction_angle = 0");
+  if (ok({sw + "width"}) && c.side_walls.width == 0)
+    for (const char* k : {"earth_pressure", "eta_b", "normal_stress"})
+      if (p.is_set(sw + k))
+        c.warnings.push_back(sw + k + " is set but " + sw + "width = 0: there are no side walls, "
+                             "ignored");
 }
 
 // The rheology's keys together.

@@ -118,6 +118,18 @@ std::string rheology_text(const CaseConfig& c, double dt) {
   if (c.periodic_x) os << "; periodic in x (no left/right walls)";
   os << "\n           Coulomb friction where the granular phase touches: "
      << (friction.empty() ? "none" : friction) << "\n";
+  if (c.side_walls.width > 0) {
+    const auto& sw = c.side_walls;
+    os << "side walls channel width W = " << g4(sw.width) << " m: grains ";
+    if (sw.friction_angle_deg > 0)
+      os << format_number(sw.friction_angle_deg) << " deg (tan " << g4(sw.tan_friction())
+         << "), body force up to (2/W) tan K p = " << g4(2 / sw.width * sw.tan_friction() *
+                                                        sw.earth_pressure)
+         << (sw.hydrostatic ? " p_hyd" : " p") << " /m (K = " << g4(sw.earth_pressure) << ")";
+    else
+      os << "no friction";
+    os << "; air Navier slip eta_b = " << g4(sw.eta_b) << " Pa s/m\n";
+  }
   return os.str();
 }
 
@@ -336,6 +348,7 @@ std::string describe_case(const CaseConfig& c, int nranks, double available_byte
   if (capped) steps = static_cast<double>(c.time.max_steps);
   bool plastic = c.rheology.yield != CaseConfig::Yield::None;
   for (const auto& w : c.walls) plastic = plastic || w.friction_angle_deg > 0;
+  plastic = plastic || (c.side_walls.width > 0 && c.side_walls.friction_angle_deg > 0);
   const double per = plastic ? kSecondsPerCellStepPlastic : kSecondsPerCellStep;
   const double seconds = static_cast<double>(cells) * steps * per / nranks;
   os << "estimate   " << g4(steps) << " steps (" << (capped ? "time.max_steps" : "t_end / first dt")

@@ -333,6 +333,28 @@ void declare_walls(Params& p) {
                "22-23, 30) replaces `type`; where air touches it, `type` applies.");
   }
 
+  // The side walls of a channel (issue 21, boundary/SideWalls.hpp): both experiments of the
+  // paper ran between plexiglass walls 10 cm apart, which the paper's 2D model leaves out.
+  p.add_real("boundary.side_walls.width", "m", 0.0, Range::ge(0),
+             "Channel width W between the two side walls (the planes z = +-W/2 of the 2D "
+             "model); 0 = no side walls (the paper's model). Their friction acts on the grains "
+             "as a body force up to (2/W) tan(alpha_w) K p (N/m^3) against the velocity, with "
+             "stick and slide (Coulomb, through the projection of eq. 30), and on the air as "
+             "Navier slip.");
+  p.add_real("boundary.side_walls.friction_angle", "degrees", 0.0, closed_open(0, 90),
+             "Friction angle alpha_w of the grains on the side walls; 0 = none.");
+  p.add_real("boundary.side_walls.earth_pressure", "-", 1.0, Range::open(0, 10),
+             "K: the side walls' normal stress is K p. 1: the plane model's out-of-plane "
+             "stress, the isotropic closure of Jop, Forterre & Pouliquen (2005).");
+  p.add_enum("boundary.side_walls.normal_stress", "pressure", {"pressure", "hydrostatic"},
+             "The side walls' normal stress, times K: pressure (the model's p, the in-plane mean "
+             "stress: the out-of-plane stress of the plane model; indeterminate in rigid "
+             "zones) or hydrostatic (the weight of the grains above, rho |g_y| times the "
+             "granular depth, as eq. 15).");
+  p.add_real("boundary.side_walls.eta_b", "Pa s/m", 1.0, Range::ge(0),
+             "Navier slip coefficient of the air on the side walls (eq. 24), in series with the "
+             "air's shear across the half-width; 0 = none.");
+
   p.add_bool("boundary.periodic_x", false,
              "The domain repeats in x (period Lx): no left/right walls; the boundary.left / "
              "boundary.right settings are then ignored (a non-zero friction_angle or velocity "

@@ -87,6 +87,7 @@ std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, Vec frac0
       {"S", s.S},     {"s_wall", s.s_wall}, {"rho", s.rho},             {"eta", s.eta}};
   if (tr.returns_to_start) f.push_back({"phi0", phi0});
   if (tr.node_copy) f.push_back({"S_node", s.S_node});  // rheology.plastic_grid = "cell_node"
+  if (tr.side_walls) f.push_back({"s_side", s.s_side});  // boundary.side_walls
   if (tr.conservative) {  // interface.method = "clsvof": the volume fraction carries the mass
     f.push_back({"volume_fraction", s.frac});
     if (tr.returns_to_start) f.push_back({"volume_fraction0", frac0});
@@ -101,7 +102,8 @@ const std::vector<std::string> kDiagnosticsColumns = {
     "left_normal_N", "left_friction_N", "bottom_normal_N", "bottom_friction_N", "front_x",
     "backwall_h", "max_p_granular", "max_speed_granular", "volume_step_change",
     "potential_energy", "dissipated_viscous", "dissipated_plastic", "dissipated_friction",
-    "energy_residual"};
+    "energy_residual", "side_stick_m2", "side_slide_m2", "side_normal_N", "side_friction_x_N",
+    "side_friction_y_N"};
 
 }  // namespace
 
@@ -346,7 +348,9 @@ void Simulation::write_diagnostics() {
                    last.fp_change, stick[0], slide[0], stick[2], slide[2], wc.normal_N[0],
                    wc.friction_N[0], wc.normal_N[2], wc.friction_N[2], col.front_x,
                    col.backwall_h, col.max_p_granular, col.max_speed_granular, lp_.vol_step_max,
-                   pe, lp_.diss_viscous, lp_.diss_plastic, lp_.diss_friction, residual});
+                   pe, lp_.diss_viscous, lp_.diss_plastic, lp_.diss_friction, residual,
+                   wc.side.stick_m2, wc.side.slide_m2, wc.side.normal_N, wc.side.friction_N[0],
+                   wc.side.friction_N[1]});
   } catch (const io::IoError& e) {
     err = e.what();
   }

@@ -21,11 +21,17 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
     ic.normals = cfg_.normals;
     interface_ = std::make_unique<interface::Interface>(g, ic);
   }
-  predictor_ = std::make_unique<momentum::Predictor>(g, cfg_.bc, cfg_.viscous_rtol);
+  predictor_ = std::make_unique<momentum::Predictor>(g, cfg_.bc, cfg_.viscous_rtol, cfg_.side);
   projector_ = std::make_unique<projection::Projector>(g, cfg_.pressure_rtol);
   predictor_->walls().set_friction(cfg_.wall_tan_b,
                                    interface_ ? interface_->phase_offset() : cfg_.yield_support);
-  const bool plastic = cfg_.rheo.active() || predictor_->walls().active();
+  const boundary::SideWalls& side = predictor_->side_walls();
+  if (side.active()) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &kappa_side_));
+  if (side.air_drag()) {
+    GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &drag_));
+    predictor_->set_drag(drag_);
+  }
+  const bool plastic = cfg_.rheo.active() || predictor_->walls().active() || side.active();
   if (plastic)
     fixed_point_ = std::make_unique<momentum::FixedPoint>(g, *predictor_, cfg_.rheo, cfg_.fp);
   for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_, &rho_r_, &eta_r_, &support_, &granular_,
@@ -44,6 +50,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   traits_.eps = cfg_.eps;
   traits_.gravity = cfg_.gravity;
   traits_.node_copy = cfg_.rheo.node_copy;
+  traits_.side_walls = side.active();
   traits_.conservative = consistent();
   traits_.rho_air = cfg_.rho_air;
   traits_.rho_gran = cfg_.rho_gran;
@@ -51,7 +58,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
 
 Stepper::~Stepper() {
   for (Vec* v : {&eta_node_, &u_tilde_, &u_star_, &u_half_, &force_, &zero_cell_, &zero_vel_, &kappa_, &kappa_b_, &D_, &rhs0_, &p_hyd_, &gran_,
-                 &eta_s_, &rho_r_, &eta_r_, &support_, &granular_})
+                 &eta_s_, &rho_r_, &eta_r_, &support_, &granular_, &kappa_side_, &drag_})
     VecDestroy(v);
 }
 
@@ -135,11 +142,16 @@ void Stepper::dissipation(State& s, double dt, StepStats& st) {
   predictor_->add_plastic(kappa_, s.S, zero_vel_, s.s_wall, force_, S_node);
   GF_PETSC(VecDot(s.vel, force_, &w));
   st.diss_plastic = -dt * w * cell;
-  if (!predictor_->walls().active()) return;
-  GF_PETSC(VecSet(force_, 0.0));
-  predictor_->add_plastic(zero_cell_, s.S, kappa_b_, s.s_wall, force_, S_node);
-  GF_PETSC(VecDot(s.vel, force_, &w));
-  st.diss_friction = -dt * w * cell;
+  if (predictor_->walls().active()) {
+    GF_PETSC(VecSet(force_, 0.0));
+    predictor_->add_plastic(zero_cell_, s.S, kappa_b_, s.s_wall, force_, S_node);
+    GF_PETSC(VecDot(s.vel, force_, &w));
+    st.diss_friction = -dt * w * cell;
+  }
+  // The side walls' friction: the same power as -I^T (k s) . u on the faces (the pair is
+  // adjoint, boundary/SideWalls.hpp).
+  if (kappa_side_)
+    st.diss_friction -= dt * predictor_->side_walls().power(s.vel, kappa_side_, s.s_side);
 }
 
 void Stepper::predict(State& s, double a0dt, double dt, StepStats& st) {
@@ -150,7 +162,7 @@ void Stepper::predict(State& s, double a0dt, double dt, StepStats& st) {
     return;
   }
   const double theta = std::min(0.5, cfg_.rheo.theta_per_dt * dt);
-  const momentum::PlasticInputs in{kappa_, kappa_b_, rho_r_, eta_r_, granular_};
+  const momentum::PlasticInputs in{kappa_, kappa_b_, rho_r_, eta_r_, granular_, kappa_side_};
   const momentum::FixedPointStats r =
       fixed_point_->solve(s, in, rhs0_, u_tilde_, a0dt, theta, s.step + 1);
   st.visc_its = r.visc_its;
@@ -204,6 +216,10 @@ void Stepper::update_properties(State& s) {
     GF_PETSC(VecSet(eta_node_, cfg_.eta_gran));
   }
   if (cfg_.rheo.viscosity == rheology::Viscosity::MuI) mu_i_viscosity(s);
+  if (drag_) {  // the air's Navier slip on the side walls, in the next assembled operator
+    granular_fraction(s);
+    predictor_->side_walls().drag(gran_, drag_);
+  }
   if (fixed_point_) {
     rheology::neighbourhood_min(g_, s.rho, rho_r_);
     rheology::neighbourhood_min(g_, s.eta, eta_r_);
@@ -242,12 +258,11 @@ void Stepper::mu_i_viscosity(State& s) {
 }
 
 void Stepper::update_yield(State& s) {
-  if (cfg_.rheo.yield == rheology::Yield::Hydrostatic) {
+  const bool hydrostatic = cfg_.rheo.yield == rheology::Yield::Hydrostatic;
+  const bool side_hyd = kappa_side_ && cfg_.side.hydrostatic;
+  if (hydrostatic || kappa_side_) granular_fraction(s);
+  if (hydrostatic || side_hyd) {
     // Granular fraction of each cell (1 - H_eps(phi), or c), weighed by eq. 15.
-    if (cfg_.levelset)
-      interface_->granular_fraction(s, gran_);
-    else
-      GF_PETSC(VecSet(gran_, 1.0));
     const double gabs = std::hypot(cfg_.gravity[0], cfg_.gravity[1]);
     // The weight of the column above acts along the vertical axis: its y-component.
     rheology::hydrostatic_pressure(g_, gran_, cfg_.rho_gran,
@@ -259,6 +274,10 @@ void Stepper::update_yield(State& s) {
   else
     levelset::yield_support(g_, s.phi, cfg_.yield_support, support_);
   rheology::yield_stress(g_, cfg_.rheo, support_, s.p, p_hyd_, kappa_);
+  // The side walls' friction bound, frozen for the step: their normal stress is K p^n (the plane
+  // model has no out-of-plane deviatoric stress), or K p_hyd (the overburden; SideWalls.hpp).
+  if (kappa_side_)
+    predictor_->side_walls().yield(gran_, support_, side_hyd ? p_hyd_ : s.p.vec(), kappa_side_);
   // The wall yield from the state at t^n; refreshed in every fixed-point iteration.
   predictor_->strain_rate(s.vel, s.eta, D_);
   predictor_->walls().yield(s.p, s.S, kappa_, D_, s.eta, kappa_b_);
@@ -276,6 +295,13 @@ void Stepper::update_yield(State& s) {
   GF_PETSC(VecRestoreArray(granular_, &m));
   GF_PETSC(VecRestoreArrayRead(phv, &ph));
   GF_PETSC(VecRestoreArrayRead(kappa_, &k));
+}
+
+void Stepper::granular_fraction(State& s) {
+  if (cfg_.levelset)
+    interface_->granular_fraction(s, gran_);
+  else
+    GF_PETSC(VecSet(gran_, 1.0));
 }
 
 // --------------------------------------------------------------- start, restart, outputs
@@ -362,8 +388,10 @@ std::pair<int, double> Stepper::equilibrate(State& s, double dt, int max_steps, 
 }
 
 boundary::WallContact Stepper::wall_contact(const State& s) const {
-  if (!predictor_->walls().active()) return {};
-  return predictor_->walls().contact(s.s_wall, kappa_b_);
+  boundary::WallContact wc;
+  if (predictor_->walls().active()) wc = predictor_->walls().contact(s.s_wall, kappa_b_);
+  if (kappa_side_) wc.side = predictor_->side_walls().contact(kappa_side_, s.s_side, gran_);
+  return wc;
 }
 
 void Stepper::derived_fields(State& s, Vec Dnorm, Vec Snorm, Vec yielded) {

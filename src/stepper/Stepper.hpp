@@ -49,6 +49,7 @@ struct PhysicsConfig {
   interface::Method interface_method = interface::Method::LevelSet;
   vof::Normals normals = vof::Normals::LevelSet;
   std::array<double, 4> wall_tan_b{0, 0, 0, 0};  // Coulomb tan(alpha_b): left, right, bottom, top
+  boundary::SideWallParams side;  // the side walls of a channel (boundary.side_walls)
 };
 
 class Stepper : public TimeStepper {
@@ -94,6 +95,11 @@ class Stepper : public TimeStepper {
   Vec u_star_ = nullptr;  // clsvof: u^n transported with the mass fluxes (Predictor::transport)
   Vec u_half_ = nullptr;  // clsvof: the velocity that carries the mass, u^{n+1/2} extrapolated
   Vec force_ = nullptr, zero_cell_ = nullptr, zero_vel_ = nullptr;  // dissipation()
+  // The side walls (boundary/SideWalls.hpp): their friction bound k (N/m^3) and the air's drag
+  // (Pa s/m^2), both per cell; null without side walls.
+  Vec kappa_side_ = nullptr, drag_ = nullptr;
+  // The granular fraction of each cell (1 - H_eps(phi), or c; 1 in a one-phase run) into gran_.
+  void granular_fraction(State& s);
   // Whether the momentum is transported with the mass fluxes of the volume fraction.
   bool consistent() const { return interface_ && interface_->conservative(); }
   // The phase the Coulomb walls and the granular mask read (phi's sign convention).

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Verification of checkpoint and restart (README "Checkpoints, restarts, exit codes").
-#  1. Case A (Drucker-Prager yield, Coulomb walls, the Anderson-accelerated fixed point: the
-#     state includes S and s_t) at grid.n = 16 to t = 0.3 s, once uninterrupted and once
+#  1. Case A in its channel (cases/ar07_rough_channel.toml: Drucker-Prager yield, Coulomb walls,
+#     the side walls' friction, the Anderson-accelerated fixed point: the state includes S, s_t
+#     and the side walls' s) at grid.n = 16 to t = 0.3 s, once uninterrupted and once
 #     killed with SIGTERM after its first checkpoint (every 20 steps), then continued with
 #     `granflow run --restart`. The killed run must exit 6 saying how to restart; the
 #     continued run must reproduce the uninterrupted one byte for byte (1 rank):
@@ -38,7 +39,7 @@ run_rc() {
 }
 
 # ---------------------------------------------------------------- 1. SIGTERM and restart
-A=("$src/cases/ar07_rough.toml" --set grid.n=16 --set time.t_end=0.3
+A=("$src/cases/ar07_rough_channel.toml" --set grid.n=16 --set time.t_end=0.3
    --set output.vtk_interval=0.05 --set output.progress_interval=0)
 start=$SECONDS
 rc=$(run_rc "$tmp/full.log" "$bin" run "${A[@]}" --out "$tmp/full")
