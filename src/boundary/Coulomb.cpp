@@ -17,7 +17,15 @@ CoulombWalls::~CoulombWalls() {
 }
 
 bool CoulombWalls::active() const {
-  return std::any_of(tan_b_.begin(), tan_b_.end(), [](double t) { return t > 0; });
+  return std::any_of(tan_b_.begin(), tan_b_.end(), [](double t) { return t > 0; }) ||
+         (gate_ && gate_->enabled() && tan_g() > 0);
+}
+
+bool CoulombWalls::gate_face(const PetscScalar* const* ph, PetscInt i, PetscInt j) const {
+  if (!ph || !gate_ || tan_g() <= 0) return false;
+  const PetscInt ig = gate_->face();
+  if ((i != ig - 1 && i != ig) || !gate_->node_blocked(ig, j)) return false;
+  return 0.5 * (ph[j - 1][i] + ph[j][i]) < support_;
 }
 
 void CoulombWalls::set_phase(Vec phi) {
@@ -123,6 +131,13 @@ void CoulombWalls::yield(Vec p, Vec S, Vec kappa, Vec D, Vec eta, Vec kappa_b) {
       if (coulomb_face(ph, 0, i, j)) kb[j][i].v = tan_b_[0] * pos(wall_x(i, i + 1, j));
       if (coulomb_face(ph, 1, i, j)) kb[j][i].v = tan_b_[1] * pos(wall_x(i, i - 1, j));
     }
+  // The gate's faces: -T_n on the plate = p - T'_xx at the mean of the face's two cells.
+  if (gate_ && gate_->present() && tan_g() > 0)
+    for (PetscInt i : {gate_->face() - 1, gate_->face()}) {
+      if (i < b.xs || i >= b.xe()) continue;
+      for (PetscInt j = std::max<PetscInt>(b.ys, 1); j < b.ye(); ++j)
+        if (gate_face(ph, i, j)) kb[j][i].v = tan_g() * pos(0.5 * (mT(i, j - 1, 0) + mT(i, j, 0)));
+    }
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), kappa_b, &kb));
   if (r) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lrho_, &r));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), lwe_, &e));
@@ -162,6 +177,15 @@ double CoulombWalls::update(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, 
       if (!b.periodic_x && (i == 0 || i == b.nx - 1) && j >= 1)
         upd(sw[j][i].v, sn[j][i].v, kb[j][i].v, u[j][i].v, r[j][i], e[j][i], b.hx);
     }
+  // The gate's faces: the slip is the grains' velocity relative to the plate, v - V. Where the
+  // plate has left (kappa_b = 0) s is reset to 0 by upd.
+  if (gate_ && gate_->enabled())
+    for (PetscInt i : {gate_->face() - 1, gate_->face()}) {
+      if (i < b.xs || i >= b.xe()) continue;
+      for (PetscInt j = std::max<PetscInt>(b.ys, 1); j < b.ye(); ++j)
+        upd(sw[j][i].v, sn[j][i].v, kb[j][i].v, u[j][i].v - gate_->velocity(), r[j][i], e[j][i],
+            b.hx);
+    }
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), eta, &e));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), rho, &r));
   GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), s_wall, &sw));
@@ -176,7 +200,7 @@ WallContact CoulombWalls::contact(Vec s_wall, Vec kappa_b) const {
   const Vel **sw, **kb;
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), s_wall, &sw));
   GF_PETSC(DMDAVecGetArrayRead(g_.dm_vel(), kappa_b, &kb));
-  double loc[16] = {}, glob[16];
+  double loc[18] = {}, glob[18];
   // A face counts when it carries a Coulomb stress (kappa_b > 0: granular and frictional).
   // Per side: stick length, slide length, the normal load sum kappa_b / tan(alpha_b) len and
   // the tangential force sum kappa_b s_t len (N/m; the sign of s_t is along +x or +y).
@@ -194,9 +218,20 @@ WallContact CoulombWalls::contact(Vec s_wall, Vec kappa_b) const {
       if (!b.periodic_x && i == 0 && j >= 1 && tan_b_[0] > 0) add(0, sw[j][i].v, kb[j][i].v, b.hy);
       if (!b.periodic_x && i == b.nx - 1 && j >= 1 && tan_b_[1] > 0) add(1, sw[j][i].v, kb[j][i].v, b.hy);
     }
+  if (gate_ && gate_->enabled() && tan_g() > 0)
+    for (PetscInt i : {gate_->face() - 1, gate_->face()}) {
+      if (i < b.xs || i >= b.xe()) continue;
+      for (PetscInt j = std::max<PetscInt>(b.ys, 1); j < b.ye(); ++j) {
+        if (kb[j][i].v <= 0) continue;
+        loc[16] += kb[j][i].v / tan_g() * b.hy;
+        // The traction on the grains, on either side: -kappa s (add_plastic), s the direction
+        // of their velocity relative to the plate.
+        loc[17] -= kb[j][i].v * sw[j][i].v * b.hy;
+      }
+    }
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), kappa_b, &kb));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_vel(), s_wall, &sw));
-  MPI_Allreduce(loc, glob, 16, MPI_DOUBLE, MPI_SUM, g_.comm());
+  MPI_Allreduce(loc, glob, 18, MPI_DOUBLE, MPI_SUM, g_.comm());
   WallContact wc;
   for (int k = 0; k < 4; ++k) {
     wc.stick_m[k] = glob[k];
@@ -204,6 +239,8 @@ WallContact CoulombWalls::contact(Vec s_wall, Vec kappa_b) const {
     wc.normal_N[k] = glob[k + 8];
     wc.friction_N[k] = glob[k + 12];
   }
+  wc.gate_normal_N = glob[16];
+  wc.gate_friction_N = glob[17];
   return wc;
 }
 

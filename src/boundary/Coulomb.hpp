@@ -19,6 +19,7 @@
 #include <array>
 
 #include "boundary/Boundary.hpp"
+#include "boundary/Gate.hpp"
 #include "boundary/SideWalls.hpp"
 #include "grid/Grid.hpp"
 
@@ -36,6 +37,11 @@ struct WallContact {
   std::array<double, 4> stick_m{0, 0, 0, 0}, slide_m{0, 0, 0, 0};
   std::array<double, 4> normal_N{0, 0, 0, 0}, friction_N{0, 0, 0, 0};
   SideContact side;  // the side walls of a channel (boundary/SideWalls.hpp)
+  // The gate (boundary/Gate.hpp), N/m: the grains' normal load on it and its friction on them
+  // (+y), both sides together.
+  double gate_normal_N = 0, gate_friction_N = 0;
+  // m, the gate's lower edge b(t) (above the domain's top once it has left); -1: no gate.
+  double gate_bottom_m = -1;
 };
 
 class CoulombWalls {
@@ -52,7 +58,13 @@ class CoulombWalls {
     tan_b_ = tan_alpha_b;
     support_ = support;
   }
-  bool active() const;  // some wall has friction
+  bool active() const;  // some wall has friction (the gate's included)
+  // The gate (not owned; null: none). Its Coulomb faces are the v-faces (i_g - 1, j) and
+  // (i_g, j) on either side of its covered nodes (i_g, j), stored in the same Vecs as the walls'
+  // (component v at those faces: interior faces, which no wall uses; the gate is at least two
+  // cells from the left and right walls, setup/Checks.cpp).
+  void set_gate(const Gate* gate) { gate_ = gate; }
+  bool gate_face(const PetscScalar* const* ph, PetscInt i, PetscInt j) const;
   const Boundaries& conditions() const { return bc_; }
   // The level set of the current step (global Vec): which wall faces are granular.
   void set_phase(Vec phi);
@@ -105,6 +117,8 @@ class CoulombWalls {
   const Grid& g_;
   Boundaries bc_;
   std::array<double, 4> tan_b_{0, 0, 0, 0};  // left, right, bottom, top
+  const Gate* gate_ = nullptr;
+  double tan_g() const { return gate_ ? gate_->params().tan_g : 0.0; }
   double support_ = 0;                       // m, a wall face is granular where phi < this
   Vec lphi_ = nullptr;                       // local phi of the current step (granular faces)
   bool have_phase_ = false;

@@ -279,13 +279,16 @@ std::vector<std::vector<PetscInt>> FixedPoint::anderson_active(Vec kappa, Vec ka
   GF_PETSC(VecGetArrayRead(kappa, &k));
   GF_PETSC(VecGetArrayRead(S_n_, &sn));
   GF_PETSC(VecGetArrayRead(sw_n_, &wn));
+  const PetscInt ig = pred_.gate() && pred_.gate()->enabled() ? pred_.gate()->face() : 0;
   for (PetscInt j = b.ys, c = 0; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i, ++c) {
       if (k[c] > 0 || sn[3 * c] != 0 || sn[3 * c + 1] != 0 || sn[3 * c + 2] != 0)
         for (PetscInt q = 0; q < 3; ++q) idx[0].push_back(3 * c + q);
       // s_t: u on the bottom and top faces, v on the left and right ones (CoulombWalls::update).
       if (((j == 0 || j == b.ny - 1) && !b.wall_u(i)) || wn[2 * c] != 0) idx[1].push_back(2 * c);
-      if ((!b.periodic_x && (i == 0 || i == b.nx - 1) && j >= 1) || wn[2 * c + 1] != 0)
+      // ... and the v-faces on either side of the gate (boundary/Gate.hpp).
+      const bool gate = ig > 0 && (i == ig - 1 || i == ig) && j >= 1;
+      if ((!b.periodic_x && (i == 0 || i == b.nx - 1) && j >= 1) || gate || wn[2 * c + 1] != 0)
         idx[1].push_back(2 * c + 1);
     }
   GF_PETSC(VecRestoreArrayRead(sw_n_, &wn));

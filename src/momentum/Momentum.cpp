@@ -90,6 +90,19 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
   auto cw = [&](const WallBC& w, double e, double d, int side, PetscInt i, PetscInt j) {
     return walls_.coulomb_face(ph, side, i, j) ? 0.0 : wall_coefficient(w, e, d);
   };
+  // The gate (boundary/Gate.hpp): its covered nodes carry no viscous shear across (eta = 0
+  // there) and are walls for the v-faces on either side (gate_wall); its covered u-faces are
+  // pinned to 0 by a penalty 1e8 times their mass term.
+  auto eta_nd = [&](PetscInt i, PetscInt j) { return gate_node(i, j) ? 0.0 : en[j][i]; };
+  const WallBC gate_bc{WallType::Navier, gate_ ? gate_->params().eta_b : 0.0,
+                       gate_ ? gate_->velocity() : 0.0};
+  auto gate_wall = [&](PetscInt i, PetscInt j, double& diag, double& rhs) {
+    const double e = 0.5 * (ec[j - 1][i] + ec[j][i]);
+    const double c = walls_.gate_face(ph, i, j) ? 0.0 : wall_coefficient(gate_bc, e, 0.5 * b.hx);
+    diag += c / b.hx;
+    rhs += c * gate_bc.velocity / b.hx;
+  };
+  constexpr double kGatePenalty = 1e8;
   GF_PETSC(MatZeroEntries(A_));
 
   const double hx = b.hx, hy = b.hy, hx2 = hx * hx, hy2 = hy * hy, hxy = hx * hy;
@@ -112,6 +125,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         n = 0;
         double diag = a0dt * ops::rho_xface(r, i, j);
         if (dr) diag += 0.5 * (dr[j][i - 1] + dr[j][i]);
+        if (gate_ && gate_->aperture(i, j) < 1.0) diag += kGatePenalty * a0dt * ops::rho_xface(r, i, j);
         // normal stress 2 eta du/dx at the centres of cells i-1 and i (periodic x: the
         // columns -1 / nx wrap in MatSetValuesStencil, cell i-1 = -1 is a ghost)
         diag += 2 * (ec[j][i] + ec[j][i - 1]) / hx2;
@@ -119,7 +133,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         if (!b.wall_u(i - 1)) add(i - 1, j, 0, -2 * ec[j][i - 1] / hx2);
         // shear stress eta (du/dy + dv/dx) at the top node (i, j+1)
         if (j + 1 < b.ny) {
-          const double e = en[j + 1][i];
+          const double e = eta_nd(i, j + 1);
           diag += e / hy2;
           add(i, j + 1, 0, -e / hy2);
           add(i, j + 1, 1, -e / hxy);
@@ -132,7 +146,7 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         }
         // ... and at the bottom node (i, j)
         if (j >= 1) {
-          const double e = en[j][i];
+          const double e = eta_nd(i, j);
           diag += e / hy2;
           add(i, j - 1, 0, -e / hy2);
           add(i, j, 1, e / hxy);
@@ -162,11 +176,12 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         if (j - 1 >= 1) add(i, j - 1, 1, -2 * ec[j - 1][i] / hy2);
         // shear stress at the right node (i+1, j) (periodic x: node nx is node 0)
         if (!b.wall_u(i + 1)) {
-          const double e = en[j][i + 1];
+          const double e = eta_nd(i + 1, j);
           diag += e / hx2;
           add(i + 1, j, 1, -e / hx2);
           add(i + 1, j, 0, -e / hxy);
           add(i + 1, j - 1, 0, e / hxy);
+          if (gate_node(i + 1, j)) gate_wall(i, j, diag, wr[j][i].v);
         } else {  // right wall
           const double e = 0.5 * (ec[j - 1][i] + ec[j][i]);
           const double c = cw(bc_.right, e, 0.5 * hx, 1, i, j);
@@ -175,11 +190,12 @@ void Predictor::assemble(Vec rho, Vec eta, Vec eta_node, double a0dt) {
         }
         // ... and at the left node (i, j)
         if (!b.wall_u(i)) {
-          const double e = en[j][i];
+          const double e = eta_nd(i, j);
           diag += e / hx2;
           add(i - 1, j, 1, -e / hx2);
           add(i, j, 0, e / hxy);
           add(i, j - 1, 0, -e / hxy);
+          if (gate_node(i, j)) gate_wall(i, j, diag, wr[j][i].v);
         } else {  // left wall
           const double e = 0.5 * (ec[j - 1][i] + ec[j][i]);
           const double c = cw(bc_.left, e, 0.5 * hx, 0, i, j);

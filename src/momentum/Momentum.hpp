@@ -22,6 +22,7 @@
 
 #include "boundary/Boundary.hpp"
 #include "boundary/Coulomb.hpp"
+#include "boundary/Gate.hpp"
 #include "boundary/SideWalls.hpp"
 #include "grid/Grid.hpp"
 #include "linsolve/Krylov.hpp"
@@ -63,6 +64,14 @@ class Predictor {
   // cells), implicit in the operator from the next assemble() on: the air's Navier slip on the
   // side walls of a channel (boundary/SideWalls.hpp). Null: none.
   void set_drag(Vec drag) { drag_ = drag; }
+  // The gate (boundary/Gate.hpp; not owned, null: none): the covered u-faces are pinned to 0 by
+  // a penalty, the covered nodes are walls (Navier slip for the air, moving at the gate's
+  // speed; the Coulomb traction for the grains, add_plastic) from the next assemble() on.
+  void set_gate(const boundary::Gate* gate) {
+    gate_ = gate;
+    walls_.set_gate(gate);
+  }
+  const boundary::Gate* gate() const { return gate_; }
 
   // The explicit part of the right-hand side: history, convection, -grad p^n, gravity and the
   // moving-wall terms. Result in rhs (global dm_vel Vec).
@@ -173,6 +182,8 @@ class Predictor {
   boundary::CoulombWalls walls_;
   boundary::SideWalls side_;
   Vec drag_ = nullptr, ldrag_ = nullptr;  // set_drag (not owned) and its ghosted copy
+  const boundary::Gate* gate_ = nullptr;  // set_gate
+  bool gate_node(PetscInt i, PetscInt j) const { return gate_ && gate_->node_blocked(i, j); }
 };
 
 }  // namespace gf::momentum

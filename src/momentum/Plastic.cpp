@@ -92,12 +92,16 @@ void Predictor::add_plastic(Vec kappa, Vec S, Vec kappa_b, Vec s_wall, Vec rhs, 
       }
       if (j >= 1) {  // y-momentum on the face (i, j)
         double f = (cell_n(i, j, 2) - cell_n(i, j - 1, 2)) / b.hy;
+        // On the gate's covered nodes (boundary/Gate.hpp) the Coulomb traction of the plate on
+        // the grains, or nothing, instead of the shear across the plate.
         double tr;
-        if (!b.wall_u(i + 1)) tr = shear(node(i + 1, j), i + 1, j);  // periodic x: node nx is node 0
+        if (gate_node(i + 1, j)) tr = walls_.gate_face(ph, i, j) ? -kb[j][i].v * sw[j][i].v : 0.0;
+        else if (!b.wall_u(i + 1)) tr = shear(node(i + 1, j), i + 1, j);  // periodic x: node nx is node 0
         else if (walls_.coulomb_face(ph, 1, i, j)) tr = -kb[j][i].v * sw[j][i].v;
         else tr = bc_.right.type == WallType::NoSlip ? shear(wall_x(i, i - 1, j), i + 1, j) : 0.0;
         double tl;
-        if (!b.wall_u(i)) tl = shear(node(i, j), i, j);
+        if (gate_node(i, j)) tl = walls_.gate_face(ph, i, j) ? kb[j][i].v * sw[j][i].v : 0.0;
+        else if (!b.wall_u(i)) tl = shear(node(i, j), i, j);
         else if (walls_.coulomb_face(ph, 0, i, j)) tl = kb[j][i].v * sw[j][i].v;
         else tl = bc_.left.type == WallType::NoSlip ? shear(wall_x(i, i + 1, j), i, j) : 0.0;
         out[j][i].v += f + (tr - tl) / b.hx;
@@ -130,6 +134,9 @@ void Predictor::strain_rate(Vec vel, Vec eta, Vec D, Vec D_node) {
   auto gamma = [&](PetscInt i, PetscInt j) -> double {
     const bool wx = b.wall_u(i), wy = (j == 0 || j == ny);  // nodes on the walls
     if (wx && wy) return 0.0;  // corner
+    // A node on the gate: no shear across the plate; its own traction is the Coulomb one (or
+    // none), as on a Coulomb wall (zero shear rate there).
+    if (gate_node(i, j)) return 0.0;
     if (!wx && !wy)
       return (v[j][i].u - v[j - 1][i].u) / b.hy + (v[j][i].v - v[j][i - 1].v) / b.hx;
     if (wy) {  // bottom or top wall: v = 0 along it, du/dy from the wall velocity

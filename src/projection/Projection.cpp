@@ -101,8 +101,9 @@ void Projector::assemble(Vec rho) {
       // periodic x, cell 0 couples to cell nx-1 (the column -1 / nx wraps; rho from the ghosts).
       // The same (i, j, k = 0) stencils fill the AIJ matrix of dm_pres and the MATHYPRESTRUCT
       // one of the 3D DMDA (PFMG); the z entries of the latter stay zero.
-      if (!b.wall_u(i)) add(i - 1, j, ihx2 / ops::rho_xface(r, i, j));
-      if (!b.wall_u(i + 1)) add(i + 1, j, ihx2 / ops::rho_xface(r, i + 1, j));
+      // The gate's faces: times their open part (boundary/Gate.hpp).
+      if (!b.wall_u(i)) add(i - 1, j, aperture(i, j) * ihx2 / ops::rho_xface(r, i, j));
+      if (!b.wall_u(i + 1)) add(i + 1, j, aperture(i + 1, j) * ihx2 / ops::rho_xface(r, i + 1, j));
       if (j > 0) add(i, j - 1, ihy2 / ops::rho_yface(r, i, j));
       if (j + 1 < b.ny) add(i, j + 1, ihy2 / ops::rho_yface(r, i, j + 1));
       col[n] = row;
@@ -152,7 +153,8 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
   const double k = dt / a0;
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
-      if (!b.wall_u(i)) u[j][i].u -= k * (ps[j][i] - ps[j][i - 1]) / (b.hx * ops::rho_xface(r, i, j));
+      if (!b.wall_u(i))
+        u[j][i].u -= aperture(i, j) * k * (ps[j][i] - ps[j][i - 1]) / (b.hx * ops::rho_xface(r, i, j));
       else u[j][i].u = 0.0;
       if (j > 0) u[j][i].v -= k * (ps[j][i] - ps[j - 1][i]) / (b.hy * ops::rho_yface(r, i, j));
       else u[j][i].v = 0.0;

@@ -30,6 +30,7 @@
 
 #include <memory>
 
+#include "boundary/Gate.hpp"
 #include "grid/Grid.hpp"
 #include "linsolve/Krylov.hpp"
 
@@ -44,6 +45,10 @@ class Projector {
 
   // Assembles the Poisson matrix for the current density (cell-centred global Vec).
   void assemble(Vec rho);
+  // The gate (boundary/Gate.hpp; not owned, null: none): the coefficients of the u-faces it
+  // covers, and their velocity corrections, are scaled by the faces' open part (0: no flux),
+  // from the next assemble() on.
+  void set_gate(const boundary::Gate* gate) { gate_ = gate; }
   // Projects u_tilde (in place -> u^{n+1}) and updates p (p^n -> p^{n+1}). Returns KSP iterations.
   int project(Vec vel, Vec p, Vec rho, double a0, double dt);
   // Whether the last project() had to solve again with GMRES after CG broke down.
@@ -58,6 +63,8 @@ class Projector {
   Mat M_ = nullptr;
   std::unique_ptr<linsolve::Krylov> ksp_;
   MatNullSpace null_ = nullptr;
+  const boundary::Gate* gate_ = nullptr;
+  double aperture(PetscInt i, PetscInt j) const { return gate_ ? gate_->aperture(i, j) : 1.0; }
   bool fell_back_ = false;
   Vec rhs_ = nullptr, psi_ = nullptr, lpsi_ = nullptr, lvel_ = nullptr, lrho_ = nullptr;
 };

@@ -82,6 +82,11 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   // The air's drag only in a two-phase run (in a one-phase run every cell is granular).
   p.side.eta_b = c.levelset.enabled ? sw.eta_b : 0.0;
   p.side.eta_air = c.air.eta;
+  p.gate.x = c.gate.x;
+  p.gate.height = c.gate.height;
+  p.gate.speed = c.gate.speed;
+  p.gate.tan_g = c.gate.friction_angle_deg > 0 ? c.gate.tan_friction() : 0.0;
+  p.gate.eta_b = c.gate.eta_b;
   return p;
 }
 

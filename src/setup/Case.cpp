@@ -33,7 +33,7 @@ bool CaseConfig::operator==(const CaseConfig& o) const {
   return title == o.title && domain == o.domain && nx == o.nx && ny == o.ny && hx == o.hx &&
          hy == o.hy && time == o.time && gravity == o.gravity && granular == o.granular &&
          air == o.air && rheology == o.rheology && levelset == o.levelset && interface == o.interface && initial == o.initial &&
-         flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && side_walls == o.side_walls && output == o.output && collapse == o.collapse &&
+         flow == o.flow && walls == o.walls && periodic_x == o.periodic_x && side_walls == o.side_walls && gate == o.gate && output == o.output && collapse == o.collapse &&
          solver == o.solver &&
          probes == o.probes;
 }
@@ -156,6 +156,11 @@ CaseConfig fill(const Params& p) {
   c.side_walls.earth_pressure = p.get_real("boundary.side_walls.earth_pressure");
   c.side_walls.eta_b = p.get_real("boundary.side_walls.eta_b");
   c.side_walls.hydrostatic = p.get_string("boundary.side_walls.normal_stress") == "hydrostatic";
+  c.gate.x = p.get_real("boundary.gate.x");
+  c.gate.height = p.get_real("boundary.gate.height");
+  c.gate.speed = p.get_real("boundary.gate.speed");
+  c.gate.friction_angle_deg = p.get_real("boundary.gate.friction_angle");
+  c.gate.eta_b = p.get_real("boundary.gate.eta_b");
 
   c.output.interval = p.get_real("output.interval");
   c.output.vtk_interval = p.get_real("output.vtk_interval");

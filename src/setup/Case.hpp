@@ -194,6 +194,14 @@ struct CaseConfig {
     double tan_friction() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
     bool operator==(const SideWalls&) const = default;
   } side_walls;
+  // boundary.gate: the gate of the dam break (boundary/Gate.hpp).
+  struct Gate {
+    double x = 0, height = 0, speed = 0;  // m, m, m/s; x = 0: none
+    double friction_angle_deg = 0;        // degrees
+    double eta_b = 0;                     // Pa s/m
+    double tan_friction() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
+    bool operator==(const Gate&) const = default;
+  } gate;
   Output output;
   Collapse collapse;
   Solver solver;

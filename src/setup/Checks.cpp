@@ -401,6 +401,30 @@ void CaseChecks::walls() {
     errors.add(p.where(sw + "friction_angle") + ": " + sw + "friction_angle = " +
                format_number(c.side_walls.friction_angle_deg) + " deg needs the channel's width: " +
                "set " + sw + "width > 0 (m), or friction_angle = 0");
+  // The gate: two cells from the left and right walls (its Coulomb faces are stored where the walls
+  // are not), below the top, with a height.
+  const std::string gt = "boundary.gate.";
+  if (ok({gt + "x", gt + "height", "domain.Lx", "domain.Ly", "grid.n", "grid.nx"}) && c.gate.x > 0 &&
+      c.hx > 0) {
+    const double hx = c.hx;
+    const double xg = std::round(c.gate.x / hx) * hx;
+    if (xg < 2 * hx || xg > Lx - 2 * hx)
+      errors.add(p.where(gt + "x") + ": " + gt + "x = " + m(c.gate.x) + " lies on the grid line x = " +
+                 g4(xg) + " m" + ": must be at least two cells (" + m(2 * hx) + ") from the side walls x = 0 and " +
+                 m(Lx));
+    if (c.gate.height <= 0 || c.gate.height >= Ly)
+      errors.add(p.where(gt + "height") + ": " + gt + "height = " + m(c.gate.height) +
+                 ": must be > 0 and below domain.Ly = " + m(Ly) +
+                 " (the air above the plate joins both sides)");
+    if (std::abs(xg - c.gate.x) > 1e-9 * Lx)
+      c.warnings.push_back(gt + "x = " + format_number(c.gate.x) + " m is moved to the grid line x = " +
+                           g4(xg) + " m (a column ending at x would leave a gap of " +
+                           g4(std::abs(xg - c.gate.x)) + " m to the plate)");
+  } else if (ok({gt + "x"}) && c.gate.x == 0) {
+    for (const char* k : {"height", "speed", "friction_angle", "eta_b"})
+      if (p.is_set(gt + k))
+        c.warnings.push_back(gt + k + " is set but " + gt + "x = 0: there is no gate, ignored");
+  }
   if (ok({sw + "width"}) && c.side_walls.width == 0)
     for (const char* k : {"earth_pressure", "eta_b", "normal_stress"})
       if (p.is_set(sw + k))

@@ -130,6 +130,15 @@ std::string rheology_text(const CaseConfig& c, double dt) {
       os << "no friction";
     os << "; air Navier slip eta_b = " << g4(sw.eta_b) << " Pa s/m\n";
   }
+  if (c.gate.x > 0) {
+    const auto& gt = c.gate;
+    const double hx = c.hx;
+    os << "gate       at x = " << g4(std::round(gt.x / hx) * hx) << " m, " << g4(gt.height)
+       << " m high, lifted at " << g4(gt.speed) << " m/s";
+    if (gt.speed > 0) os << " (clear of its height after " << g4(gt.height / gt.speed) << " s)";
+    os << "; grains " << (gt.friction_angle_deg > 0 ? format_number(gt.friction_angle_deg) + " deg" : "frictionless")
+       << ", air Navier slip eta_b = " << g4(gt.eta_b) << " Pa s/m\n";
+  }
   return os.str();
 }
 

@@ -355,6 +355,23 @@ void declare_walls(Params& p) {
              "Navier slip coefficient of the air on the side walls (eq. 24), in series with the "
              "air's shear across the half-width; 0 = none.");
 
+  // The gate of the dam break (issue 21, boundary/Gate.hpp).
+  p.add_real("boundary.gate.x", "m", 0.0, Range::ge(0),
+             "Position of the gate, a thin vertical plate that holds the column at t <= 0 and "
+             "is lifted from t = 0 (moved to the nearest vertical grid line, at least two "
+             "cells from the left and right walls); 0 = no gate (the paper: the whole column released "
+             "at t = 0).");
+  p.add_real("boundary.gate.height", "m", 0.0, Range::ge(0),
+             "Height of the plate (its lower edge at y = 0 at t = 0); must be below the "
+             "domain's height, so that the air above it connects both sides.");
+  p.add_real("boundary.gate.speed", "m/s", 0.0, Range::ge(0),
+             "Lifting speed of the gate (its lower edge at y = speed t); 0 = never lifted.");
+  p.add_real("boundary.gate.friction_angle", "degrees", 0.0, closed_open(0, 90),
+             "Friction angle of the grains on the plate (Coulomb, against their velocity "
+             "relative to the plate); 0 = frictionless.");
+  p.add_real("boundary.gate.eta_b", "Pa s/m", 1.0, Range::ge(0),
+             "Navier slip coefficient of the air on the plate (eq. 24).");
+
   p.add_bool("boundary.periodic_x", false,
              "The domain repeats in x (period Lx): no left/right walls; the boundary.left / "
              "boundary.right settings are then ignored (a non-zero friction_angle or velocity "

@@ -103,7 +103,7 @@ const std::vector<std::string> kDiagnosticsColumns = {
     "backwall_h", "max_p_granular", "max_speed_granular", "volume_step_change",
     "potential_energy", "dissipated_viscous", "dissipated_plastic", "dissipated_friction",
     "energy_residual", "side_stick_m2", "side_slide_m2", "side_normal_N", "side_friction_x_N",
-    "side_friction_y_N"};
+    "side_friction_y_N", "gate_bottom_m", "gate_normal_N", "gate_friction_N"};
 
 }  // namespace
 
@@ -350,7 +350,8 @@ void Simulation::write_diagnostics() {
                    col.backwall_h, col.max_p_granular, col.max_speed_granular, lp_.vol_step_max,
                    pe, lp_.diss_viscous, lp_.diss_plastic, lp_.diss_friction, residual,
                    wc.side.stick_m2, wc.side.slide_m2, wc.side.normal_N, wc.side.friction_N[0],
-                   wc.side.friction_N[1]});
+                   wc.side.friction_N[1], wc.gate_bottom_m, wc.gate_normal_N,
+                   wc.gate_friction_N});
   } catch (const io::IoError& e) {
     err = e.what();
   }

@@ -25,6 +25,11 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   projector_ = std::make_unique<projection::Projector>(g, cfg_.pressure_rtol);
   predictor_->walls().set_friction(cfg_.wall_tan_b,
                                    interface_ ? interface_->phase_offset() : cfg_.yield_support);
+  if (cfg_.gate.x > 0) {
+    gate_ = std::make_unique<boundary::Gate>(g, cfg_.gate);
+    predictor_->set_gate(gate_.get());
+    projector_->set_gate(gate_.get());
+  }
   const boundary::SideWalls& side = predictor_->side_walls();
   if (side.active()) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &kappa_side_));
   if (side.air_drag()) {
@@ -67,14 +72,17 @@ Stepper::~Stepper() {
 StepStats Stepper::step(State& s, double dt) {
   StepStats st;
   const bool first = (s.step == 0);
+  // The gate where it is at the end of the step (its covered faces and nodes for the viscous
+  // and pressure operators of this step).
+  if (gate_) gate_->set_time(gate_hold_ ? 0.0 : s.t + dt);
   // 1. The interface: the level set of eq. 26 with the solenoidal u^n, redistanced when due; or
   //    the conservative volume fraction with phi rebuilt from it (interface/Interface.hpp).
   advance_interface(s, dt, first, st);
   // 2. The derived state: rho^{n+1}, eta^{n+1} (constant in a one-phase run: then the
   //    matrices, and the preconditioners built on them, are kept from step to step), kappa,
   //    kappa_b and the granular mask.
-  const bool props_change =
-      cfg_.levelset || first || cfg_.rheo.viscosity == rheology::Viscosity::MuI;
+  const bool props_change = cfg_.levelset || first ||
+                            cfg_.rheo.viscosity == rheology::Viscosity::MuI || gate_ != nullptr;
   update_derived(s, props_change);
   // 3. Prediction, eq. 31 (kappa = 0: Newtonian phases): the explicit terms, then the implicit
   //    viscous solve or the fixed point.
@@ -307,6 +315,7 @@ void Stepper::granular_fraction(State& s) {
 // --------------------------------------------------------------- start, restart, outputs
 
 void Stepper::initialize(State& s) {
+  if (gate_) gate_->set_time(0.0);  // the column behind its gate
   if (interface_) interface_->initialize(s);
   predictor_->walls().set_phase(phase(s));
   update_properties(s);
@@ -335,6 +344,7 @@ void Stepper::initialize(State& s) {
 }
 
 void Stepper::resume(State& s) {
+  if (gate_) gate_->set_time(s.t);
   predictor_->walls().set_phase(phase(s));
   // rho and eta come from the checkpoint as the last step left them (with mu(I), those of that
   // step's start): recomputing them here would change the diagnostics of a restart that takes
@@ -361,6 +371,7 @@ std::pair<int, double> Stepper::equilibrate(State& s, double dt, int max_steps, 
   // granular speed after a pseudo-step falls by about 1 - theta per step (0.99 at theta =
   // 10 dt, dt = 1e-3 s); with theta = 0.5 the speeds are larger and do not fall steadily
   // (measured on cases/verify/dp_pile.toml).
+  gate_hold_ = true;  // the pseudo-steps hold the column where t = 0 has its gate
   try {
     for (k = 1; k <= max_steps; ++k) {
       step(s, dt);
@@ -377,10 +388,13 @@ std::pair<int, double> Stepper::equilibrate(State& s, double dt, int max_steps, 
       if (speed < tol) break;
     }
   } catch (...) {
+    gate_hold_ = false;
     VecDestroy(&phi0);
     VecDestroy(&c0);
     throw;
   }
+  gate_hold_ = false;
+  if (gate_) gate_->set_time(0.0);
   VecDestroy(&phi0);
   VecDestroy(&c0);
   update_properties(s);
@@ -391,6 +405,7 @@ boundary::WallContact Stepper::wall_contact(const State& s) const {
   boundary::WallContact wc;
   if (predictor_->walls().active()) wc = predictor_->walls().contact(s.s_wall, kappa_b_);
   if (kappa_side_) wc.side = predictor_->side_walls().contact(kappa_side_, s.s_side, gran_);
+  if (gate_) wc.gate_bottom_m = gate_->bottom();
   return wc;
 }
 

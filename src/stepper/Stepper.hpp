@@ -50,6 +50,7 @@ struct PhysicsConfig {
   vof::Normals normals = vof::Normals::LevelSet;
   std::array<double, 4> wall_tan_b{0, 0, 0, 0};  // Coulomb tan(alpha_b): left, right, bottom, top
   boundary::SideWallParams side;  // the side walls of a channel (boundary.side_walls)
+  boundary::GateParams gate;      // the gate of the dam break (boundary.gate)
 };
 
 class Stepper : public TimeStepper {
@@ -84,6 +85,8 @@ class Stepper : public TimeStepper {
   std::unique_ptr<momentum::Predictor> predictor_;
   std::unique_ptr<projection::Projector> projector_;
   std::unique_ptr<momentum::FixedPoint> fixed_point_;  // a yield stress or wall friction
+  std::unique_ptr<boundary::Gate> gate_;  // boundary.gate (null: none)
+  bool gate_hold_ = false;                // equilibrate(): the gate stays where it is at t = 0
   double assembled_a0dt_ = -1;  // a0/dt of the assembled viscous matrix, 1/s
   long long mu_i_floor_cells_ = 0, mu_i_cap_cells_ = 0;
   Vec kappa_ = nullptr, kappa_b_ = nullptr, D_ = nullptr, rhs0_ = nullptr, p_hyd_ = nullptr,
