@@ -6,8 +6,9 @@
 //
 // A moving solid inside the grid, by blocked faces: the plate lies on the column of u-faces
 // i_g = round(x_g / hx) (a grid line; the case's x_g is moved to it, `granflow check` says
-// where) and covers y in [b(t), b(t) + H_g], b(t) = V t (H_g: the plate's height, below the
-// domain's so that the air above it connects both sides and the pressure keeps one null space).
+// where) and covers y in [b(t), H_g], b(t) = V t: H_g, the top of the channel's opening, is
+// below the domain's top so that the air above the plate connects both sides (as the open top
+// of the channel does) and the pressure keeps one null space; the plate leaves once b >= H_g.
 //   * Normal velocity: the aperture a_j of the u-face (i_g, j) is the part of [j hy, (j+1) hy]
 //     not covered by the plate. The prediction pins u~ = 0 on a face the plate touches (a
 //     penalty on its row of the viscous operator, momentum/Momentum.hpp), and the projection's
@@ -39,7 +40,7 @@ struct GateParams {
 
 class Gate {
  public:
-  Gate(const Grid& g, const GateParams& p) : p_(p), ny_(g.box().ny), hy_(g.box().hy), ly_(g.box().Ly) {
+  Gate(const Grid& g, const GateParams& p) : p_(p), ny_(g.box().ny), hy_(g.box().hy) {
     if (p_.x > 0) i_ = static_cast<PetscInt>(std::lround(p_.x / g.box().hx));
     set_time(0.0);
   }
@@ -47,15 +48,20 @@ class Gate {
   const GateParams& params() const { return p_; }
   // The u-face column of the plate (0: no gate).
   PetscInt face() const { return i_; }
-  // The geometry at time t (s): b(t) = V max(t, 0).
+  // The geometry at time t (s): b(t) = V max(t, 0). The plate covers [b(t), H_g]: it rises out
+  // of the channel through its open top, which the domain's lid stands for above H_g. Covering
+  // [b, b + H_g] instead, its top reached the lid after (Ly - H_g) / V (9 ms in case A) and
+  // sealed the air above the column from the air outside: the column then hung in that air's
+  // suction (p down to -2 kPa in case B) and no grain left under the rising plate until it had
+  // gone.
   void set_time(double t) {
     bottom_ = p_.speed * std::max(t, 0.0);
-    top_ = bottom_ + p_.height;
+    top_ = p_.height;
   }
   double bottom() const { return bottom_; }
   double top() const { return top_; }
   // Inside the domain at the time set.
-  bool present() const { return enabled() && bottom_ < ly_ && top_ > 0; }
+  bool present() const { return enabled() && bottom_ < top_; }
   // The plate's velocity (+y), m/s.
   double velocity() const { return p_.speed; }
   // The open part (0..1) of the u-face (i, j); 1 off the plate's column.
@@ -76,7 +82,7 @@ class Gate {
   GateParams p_;
   PetscInt i_ = 0;
   PetscInt ny_ = 0;
-  double hy_ = 0, ly_ = 0;
+  double hy_ = 0;
   double bottom_ = 0, top_ = 0;
 };
 
