@@ -362,8 +362,9 @@ void declare_walls(Params& p) {
              "cells from the left and right walls); 0 = no gate (the paper: the whole column released "
              "at t = 0).");
   p.add_real("boundary.gate.height", "m", 0.0, Range::ge(0),
-             "Height of the plate (its lower edge at y = 0 at t = 0); must be below the "
-             "domain's height, so that the air above it connects both sides.");
+             "Height of the plate: it covers y in [speed t, height] and leaves the channel "
+             "through the open top above height (as the experiments' plate rises out of the "
+             "channel); must be below domain.Ly, so that the air above it connects both sides.");
   p.add_real("boundary.gate.speed", "m/s", 0.0, Range::ge(0),
              "Lifting speed of the gate (its lower edge at y = speed t); 0 = never lifted.");
   p.add_real("boundary.gate.friction_angle", "degrees", 0.0, closed_open(0, 90),
