@@ -39,28 +39,15 @@ RUNS=(
 )
 [[ -n "${LIST:-}" || -x "$gf" ]] || "$root/scripts/build.sh" || exit 1
 mkdir -p "$out_root"
+# shellcheck source=run_lib.sh
+source "$root/scripts/validation/run_lib.sh"
 for r in "${RUNS[@]}"; do
   IFS='|' read -r name case opts ranks <<<"$r"
   ranks="${ranks:-1}"
   if [[ -n "${ONLY:-}" && " $ONLY " != *" $name "* ]]; then continue; fi
   for m in $methods; do
-    out="$out_root/${name}_$m"
-    cmd="granflow run $case --out ${out#$root/} $opts --set interface.method=$m"
-    launch=(nice "$gf")
-    if [[ "$ranks" -gt 1 ]]; then
-      cmd="mpirun -n $ranks $cmd"
-      launch=(nice mpirun -n "$ranks" "$gf")
-    fi
-    if [[ -n "${LIST:-}" ]]; then echo "$cmd"; continue; fi
-    if [[ -z "${FORCE:-}" ]] && grep -qs '"status": "completed"' "$out/summary.json"; then
-      echo "skip $out (completed)"; continue
-    fi
-    echo "run  $cmd"
-    start=$SECONDS
     # shellcheck disable=SC2086
-    "${launch[@]}" run "$root/$case" --out "$out" --overwrite $opts --set "interface.method=$m" \
-      --set output.progress_interval=60 > "$out.log" 2>&1
-    echo "     exit $?, $((SECONDS - start)) s"
+    run_case "$out_root/${name}_$m" "$case" "$ranks" $opts --set "interface.method=$m"
   done
 done
 [[ -n "${LIST:-}" ]] || /usr/bin/python3 "$root/scripts/validation/interface_compare.py" \

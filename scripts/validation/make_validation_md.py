@@ -21,24 +21,46 @@ import os
 from report import document, runs
 
 
-def interface_section(path):
-    """The last section: the paper's scheme next to the mass-conserving interface (issue 18), the
-    table of scripts/validation/interface_compare.py (docs/interface_compare.md) if it exists."""
+def included_section(path, title, intro):
+    """A section made of an intro and the body of a generated page (its own title dropped), or
+    nothing if the page does not exist."""
     if not os.path.isfile(path):
         return []
     with open(path) as f:
         body = f.read().splitlines()
     body = [ln for ln in body if not ln.startswith("# ")]  # its own title
-    return ["", "## The interface methods: the paper's level set and CLSVOF (issue 18)", "",
-            "Every run above is the paper's level set (`interface.method = \"level_set\"`, pinned "
-            "by `scripts/validation/run_validation.sh`). The default since issue 18 is the "
-            "mass-conserving CLSVOF (`docs/INTERFACE.md`). The paper's cases with both, made by "
-            "`scripts/validation/interface_compare.sh` (the table of "
-            "`docs/interface_compare.md`; what it says: `docs/INTERFACE.md`, \"The paper's cases, both "
-            "methods\": case A's runout is the furthest front with CLSVOF, 4 % past the paper at "
-            "n = 128 and 2.3 % at n = 256, converging slowly (observed order 0.27 from n = 64, "
-            "not monotone from n = 32); case B's runs 24.5 % past the "
-            "paper at n = 64, beyond its domain's far wall, and 18.7 % at n = 128):", ""] + body
+    return ["", f"## {title}", "", intro, ""] + body
+
+
+def interface_section(path):
+    """The paper's scheme next to the mass-conserving interface (issue 18), the table of
+    scripts/validation/interface_compare.py (docs/interface_compare.md) if it exists."""
+    return included_section(
+        path, "The interface methods: the paper's level set and CLSVOF (issue 18)",
+        "Every run above is the paper's level set (`interface.method = \"level_set\"`, pinned "
+        "by `scripts/validation/run_validation.sh`). The default since issue 18 is the "
+        "mass-conserving CLSVOF (`docs/INTERFACE.md`). The paper's cases with both, made by "
+        "`scripts/validation/interface_compare.sh` (the table of "
+        "`docs/interface_compare.md`; what it says: `docs/INTERFACE.md`, \"The paper's cases, both "
+        "methods\": case A's runout is the furthest front with CLSVOF, 4 % past the paper at "
+        "n = 128 and 2.3 % at n = 256, converging slowly (observed order 0.27 from n = 64, "
+        "not monotone from n = 32); case B's runs 24.5 % past the "
+        "paper at n = 64, beyond its domain's far wall, and 18.7 % at n = 128):")
+
+
+def channel_section(path):
+    """The channel's side walls and the gate (issue 21), the tables of
+    scripts/validation/channel.py (docs/channel_compare.md) if it exists."""
+    return included_section(
+        path, "The channel's side walls and the gate (issue 21)", CHANNEL_INTRO)
+
+
+# What the tables of docs/channel_compare.md say (docs/CHANNEL.md has the whole account).
+CHANNEL_INTRO = (
+    "The physics the paper names as missing, with the default CLSVOF interface: the friction of "
+    "the 10 cm channel's side walls and the gate (`docs/CHANNEL.md`), made by "
+    "`scripts/validation/channel.sh` (the tables of `docs/channel_compare.md`). The stage "
+    "times are the runs' own, with no time shift.")
 
 
 def main():
@@ -53,6 +75,7 @@ def main():
         os.makedirs(figs_dir, exist_ok=True)
     L = document.build(document.Report(R, figs_dir, a.no_figures))
     L += interface_section(os.path.join(os.path.dirname(a.out), "interface_compare.md"))
+    L += channel_section(os.path.join(os.path.dirname(a.out), "channel_compare.md"))
     with open(a.out, "w") as f:
         f.write("\n".join(L))
     print(f"wrote {a.out}")
