@@ -38,6 +38,8 @@ VARS=(
 )
 [[ -n "${LIST:-}" || -x "$gf" ]] || "$root/scripts/build.sh" || exit 1
 mkdir -p "$out_root"
+# shellcheck source=run_lib.sh
+source "$root/scripts/validation/run_lib.sh"
 for r in "${RUNS[@]}"; do
   IFS='|' read -r name stem opts ranks <<<"$r"
   ranks="${ranks:-1}"
@@ -46,23 +48,8 @@ for r in "${RUNS[@]}"; do
     IFS='|' read -r var suffix vopts <<<"$v"
     [[ " $variants " == *" $var "* ]] || continue
     case="$stem$suffix.toml"
-    out="$out_root/${name}_$var"
-    cmd="granflow run $case --out ${out#$root/} $opts $vopts"
-    launch=(nice "$gf")
-    if [[ "$ranks" -gt 1 ]]; then
-      cmd="mpirun -n $ranks $cmd"
-      launch=(nice mpirun -n "$ranks" "$gf")
-    fi
-    if [[ -n "${LIST:-}" ]]; then echo "$cmd"; continue; fi
-    if [[ -z "${FORCE:-}" ]] && grep -qs '"status": "completed"' "$out/summary.json"; then
-      echo "skip $out (completed)"; continue
-    fi
-    echo "run  $cmd"
-    start=$SECONDS
     # shellcheck disable=SC2086
-    "${launch[@]}" run "$root/$case" --out "$out" --overwrite $opts $vopts \
-      --set output.progress_interval=60 > "$out.log" 2>&1
-    echo "     exit $?, $((SECONDS - start)) s"
+    run_case "$out_root/${name}_$var" "$case" "$ranks" $opts $vopts
   done
 done
 [[ -n "${LIST:-}" ]] || /usr/bin/python3 "$root/scripts/validation/channel.py" \

@@ -54,28 +54,25 @@ class Gate {
   // sealed the air above the column from the air outside: the column then hung in that air's
   // suction (p down to -2 kPa in case B) and no grain left under the rising plate until it had
   // gone.
-  void set_time(double t) {
-    bottom_ = p_.speed * std::max(t, 0.0);
-    top_ = p_.height;
-  }
+  void set_time(double t) { bottom_ = p_.speed * std::max(t, 0.0); }
   double bottom() const { return bottom_; }
-  double top() const { return top_; }
+  double top() const { return p_.height; }
   // Inside the domain at the time set.
-  bool present() const { return enabled() && bottom_ < top_; }
+  bool present() const { return enabled() && bottom_ < p_.height; }
   // The plate's velocity (+y), m/s.
   double velocity() const { return p_.speed; }
   // The open part (0..1) of the u-face (i, j); 1 off the plate's column.
   double aperture(PetscInt i, PetscInt j) const {
     if (i != i_ || !present()) return 1.0;
     const double lo = j * hy_, hi = (j + 1) * hy_;
-    const double covered = std::max(0.0, std::min(hi, top_) - std::max(lo, bottom_));
+    const double covered = std::max(0.0, std::min(hi, p_.height) - std::max(lo, bottom_));
     return std::clamp(1.0 - covered / hy_, 0.0, 1.0);
   }
   // The node (i, j) (an interior node, 1 <= j < ny) is on the plate.
   bool node_blocked(PetscInt i, PetscInt j) const {
     if (i != i_ || !present() || j < 1 || j >= ny_) return false;
     const double y = j * hy_;
-    return y >= bottom_ && y <= top_;
+    return y >= bottom_ && y <= p_.height;
   }
 
  private:
@@ -83,7 +80,7 @@ class Gate {
   PetscInt i_ = 0;
   PetscInt ny_ = 0;
   double hy_ = 0;
-  double bottom_ = 0, top_ = 0;
+  double bottom_ = 0;
 };
 
 }  // namespace gf::boundary

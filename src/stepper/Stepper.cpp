@@ -268,7 +268,9 @@ void Stepper::mu_i_viscosity(State& s) {
 void Stepper::update_yield(State& s) {
   const bool hydrostatic = cfg_.rheo.yield == rheology::Yield::Hydrostatic;
   const bool side_hyd = kappa_side_ && cfg_.side.hydrostatic;
-  if (hydrostatic || kappa_side_) granular_fraction(s);
+  // With the air's side-wall drag, update_properties has just filled gran_ from the same phase
+  // (the drag exists only in two-phase runs, whose properties change every step).
+  if ((hydrostatic || kappa_side_) && !drag_) granular_fraction(s);
   if (hydrostatic || side_hyd) {
     // Granular fraction of each cell (1 - H_eps(phi), or c), weighed by eq. 15.
     const double gabs = std::hypot(cfg_.gravity[0], cfg_.gravity[1]);
