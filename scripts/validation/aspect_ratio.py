@@ -22,6 +22,7 @@ FIT_RANGES. Published laws: PUBLISHED below, each with its source and how it was
 
 Needs numpy and matplotlib (/usr/bin/python3 on Debian) and scripts/granflow_run.py.
 """
+import json
 import math
 import os
 import re
@@ -217,7 +218,25 @@ def main(argv):
         if os.path.isdir(os.path.join(root, n)):
             r = read_run(os.path.join(root, n))
             if r:
+                r["source"] = "run"
                 runs.append(r)
+    # Every run's record is kept in OUT_MD's .json: a run that is no longer on disk is read from
+    # there, so that the page can be regenerated and extended without running it again.
+    json_path = os.path.splitext(out_md)[0] + ".json"
+    kept = {}
+    if os.path.isfile(json_path):
+        with open(json_path) as fh:
+            kept = json.load(fh)
+    on_disk = {r["name"] for r in runs}
+    from_record = sorted(n for n in kept if n not in on_disk)
+    for n in from_record:
+        runs.append(dict(kept[n], source="record"))
+    runs.sort(key=lambda r: r["name"])
+    if runs:
+        with open(json_path, "w") as fh:
+            json.dump({r["name"]: {k: v for k, v in r.items() if k != "source"} for r in runs}, fh,
+                      indent=0, sort_keys=True)
+            fh.write("\n")
     done = [r for r in runs if r["ok"]]
     variants = sorted({r["variant"] for r in runs}, key=lambda v: (list(VARIANT_LABELS).index(v)
                                                                    if v in VARIANT_LABELS else 99, v))
@@ -240,6 +259,10 @@ def main(argv):
       "`scripts/validation/aspect_ratio.sh` calls after its runs (the command that made this page: "
       "`scripts/validation/aspect_ratio.sh`); do not edit by hand. Machine: a shared 2-core machine "
       "(another job on the other core), one MPI rank per run, one run at a time, `nice`.*")
+    w("")
+    w(f"Each run's figures are also kept in `{os.path.basename(json_path)}` beside this page; a run "
+      "no longer on disk is listed from there" + (": " + ", ".join(from_record) if from_record else
+                                                  " (none here: every run was read from disk)") + ".")
     w("")
     w("Columns of width L_i and height H_i = a L_i against the back wall (L_i = 0.2 m for a <= 2, "
       "0.1 m for a = 4) with the material and walls of case A (`cases/ar07_rough.toml`: Drucker-Prager "

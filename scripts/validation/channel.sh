@@ -12,6 +12,10 @@
 #   scripts/validation/channel.sh                        # the runs below, in order
 #   ONLY="a_n64 b_n64" VARIANTS=side scripts/validation/channel.sh
 #   LIST=1 scripts/validation/channel.sh                 # the runs and their commands
+#   SET=fine scripts/validation/channel.sh               # the finest grids (below)
+#
+# SET=fine: case A at n = 256 and case B at n = 128, `none` and `both`, into runs/channel_fine/,
+# written by channel.py to docs/channel_compare_fine.md (its figures channel_front_fine_*.png).
 #
 # A run whose summary.json says "completed" is skipped unless FORCE=1. GRANFLOW=path chooses
 # the binary (default build/granflow), OUT_ROOT the output root (default runs/channel).
@@ -19,8 +23,14 @@ set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
 gf="${GRANFLOW:-$root/build/granflow}"
-out_root="${OUT_ROOT:-$root/runs/channel}"
-variants="${VARIANTS:-none side gate both}"
+set_name="${SET:-main}"
+case "$set_name" in
+  main) out_root="${OUT_ROOT:-$root/runs/channel}"; doc="$root/docs/channel_compare.md"
+        variants="${VARIANTS:-none side gate both}" ;;
+  fine) out_root="${OUT_ROOT:-$root/runs/channel_fine}"; doc="$root/docs/channel_compare_fine.md"
+        variants="${VARIANTS:-none both}" ;;
+  *) echo "channel.sh: SET = '$set_name' is not allowed (main or fine)" >&2; exit 2 ;;
+esac
 opts0="--set output.vtk_interval=0"
 # name | case file stem | options | ranks
 RUNS=(
@@ -29,6 +39,12 @@ RUNS=(
   "a_n128|cases/ar07_rough|--set grid.n=128 $opts0"
   "b_n128|cases/ar2_smooth|--set grid.n=128 --set domain.Lx=2.0 $opts0"
 )
+if [[ "$set_name" == fine ]]; then
+  RUNS=(
+    "b_n128|cases/ar2_smooth|--set grid.n=128 --set domain.Lx=2.0 $opts0"
+    "a_n256|cases/ar07_rough|--set grid.n=256 $opts0"
+  )
+fi
 # variant | case file suffix | options
 VARS=(
   "none||"
@@ -53,4 +69,4 @@ for r in "${RUNS[@]}"; do
   done
 done
 [[ -n "${LIST:-}" ]] || /usr/bin/python3 "$root/scripts/validation/channel.py" \
-  "$out_root" "$root/docs/channel_compare.md"
+  "$out_root" "$doc"
