@@ -14,7 +14,7 @@
 #   LIST=1 scripts/validation/channel.sh                 # the runs and their commands
 #   SET=fine scripts/validation/channel.sh               # the finest grids (below)
 #
-# SET=fine: case A at n = 256 and case B at n = 128, `none` and `both`, into runs/channel_fine/,
+# SET=fine: case A at n = 256 (on 2 ranks) and case B at n = 128, `none` and `both`, into runs/channel_fine/,
 # written by channel.py to docs/channel_compare_fine.md (its figures channel_front_fine_*.png).
 #
 # A run whose summary.json says "completed" is skipped unless FORCE=1. GRANFLOW=path chooses
@@ -42,7 +42,7 @@ RUNS=(
 if [[ "$set_name" == fine ]]; then
   RUNS=(
     "b_n128|cases/ar2_smooth|--set grid.n=128 --set domain.Lx=2.0 $opts0"
-    "a_n256|cases/ar07_rough|--set grid.n=256 $opts0"
+    "a_n256|cases/ar07_rough|--set grid.n=256 $opts0|2"
   )
 fi
 # variant | case file suffix | options

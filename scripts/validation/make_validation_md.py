@@ -63,6 +63,20 @@ CHANNEL_INTRO = (
     "times are the runs' own, with no time shift.")
 
 
+def channel_fine_section(path):
+    """The same on the finer grids (case A at n = 256, case B's `both` at n = 128),
+    `SET=fine scripts/validation/channel.sh` (docs/channel_compare_fine.md) if it exists."""
+    return included_section(
+        path, "The channel's side walls and the gate on the finer grids (issue 21)",
+        CHANNEL_FINE_INTRO)
+
+
+CHANNEL_FINE_INTRO = (
+    "The same, `none` and `both` only, on case A at n = 256 (the paper's finest grid) and on "
+    "case B at n = 128, made by `SET=fine scripts/validation/channel.sh` (the tables of "
+    "`docs/channel_compare_fine.md`).")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", default=os.path.join(runs.ROOT, "runs/validation"))
@@ -76,6 +90,7 @@ def main():
     L = document.build(document.Report(R, figs_dir, a.no_figures))
     L += interface_section(os.path.join(os.path.dirname(a.out), "interface_compare.md"))
     L += channel_section(os.path.join(os.path.dirname(a.out), "channel_compare.md"))
+    L += channel_fine_section(os.path.join(os.path.dirname(a.out), "channel_compare_fine.md"))
     with open(a.out, "w") as f:
         f.write("\n".join(L))
     print(f"wrote {a.out}")
