@@ -275,7 +275,7 @@ def main(argv):
          "grid convergence" if extra else "") +
       "; domains and end times are in `scripts/validation/aspect_ratio.sh` and below. In `nowalls` and `walls` the column is "
       "released at t = 0; `both` adds to `walls` the gate of `cases/ar07_rough_channel.toml` at x = L_i (lifted at "
-      "2.333 m/s, tan 10.5 deg, its plate one coarse cell below the domain's top), at 16 and 32 cells only.")
+      "2.333 m/s, tan 10.5 deg, its plate one coarse cell below the domain's top), at 16 and 32 cells (and 64 for a <= 1) but for a = 4 at 32 cells, not run.")
     w("")
     w("Quantities: the normalised runout (L_f - L_i)/L_i with L_f = `runout_m` of summary.json (the front "
       "at the end, from the back wall); the final height H_f/L_i with H_f the **largest height of the "
