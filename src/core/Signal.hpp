@@ -1,7 +1,9 @@
 #pragma once
 // A polite stop on SIGINT (Ctrl-C) and SIGTERM (the batch system's "your time is up"): the
-// handler only records the signal (async-signal-safe: one sig_atomic_t store) and puts the
-// default action back, so a second signal kills the process at once. The time loop polls
+// handler only records the signal (async-signal-safe: one sig_atomic_t store and the time). A
+// second signal more than 2 s after the first kills the process at once; one within 2 s is
+// taken for the same stop delivered twice (under mpirun: the terminal's and mpirun's forward, or
+// SLURM's SIGTERM to every process and mpirun's forward) and ignored. The time loop polls
 // stop_signal() after each step, agrees on it across ranks, writes a checkpoint and the
 // diagnostics, and exits with kExitInterrupted (core/Error.hpp); the start-up of a run polls
 // it too, between its stages, so that a signal at any time after main() begins stops the run
