@@ -30,6 +30,9 @@ import records  # noqa: E402
 from interface_compare import f, start  # noqa: E402
 
 VARIANTS = ("none", "side", "gate", "both")
+# figures compared as relative changes (the others as differences)
+REL = {"runout_m", "backwall_height_m", "front_speed_mps", "max_p_granular_ratio", "max_speed",
+       "steps"}
 DESCR = {"none": "the paper's 2D model", "side": "side walls", "gate": "gate",
          "both": "side walls and gate"}
 # name: column of summary.json, label, format
@@ -57,6 +60,11 @@ def load(root):
         d = gr.read_csv(os.path.join(path, "diagnostics.csv"))
         s["dv_max"] = abs(d["volume_change_pct"]).max() / 100
         s["front"] = (d["t"], d["front_x"])
+        # the largest speed on the grid, air or grains (the CFL condition's)
+        s["max_speed"] = float(d["max_speed"].max())
+        # where an interrupted run stopped: its summary's checkpoint (steps and wall time are
+        # those of summary.json), else its last diagnostics row
+        s["t_reached"] = s.get("checkpoint_t") or float(d["t"][-1])
         dep = os.path.join(path, "deposit.csv")
         if os.path.isfile(dep):
             q = gr.read_csv(dep)
@@ -70,7 +78,8 @@ def load(root):
 
 
 # The figures of a run that its record in OUT_MD's .json keeps (with the front, thinned).
-KEEP = [k for k, _, _ in COLS] + ["status", "warnings_fp_capped_steps", "wall_s", "dv_max"]
+KEEP = [k for k, _, _ in COLS] + ["status", "warnings_fp_capped_steps", "wall_s", "dv_max",
+                                  "steps", "max_speed", "t_reached"]
 FRONT_POINTS = 400
 
 
@@ -103,8 +112,9 @@ def main(argv):
                  nargs=(2, 3))
     if isinstance(runs, int):
         return runs
+    shown = {k: s for k, s in runs.items() if s.get("status") == "completed"}
     from_record = sorted(f"{n}_{v}" for (n, v), s in runs.items() if s["source"] == "record")
-    names = sorted({k[0] for k in runs}, key=lambda n: (n[0], int(re.sub(r"\D", "", n) or 0)))
+    names = sorted({k[0] for k in runs}, key=lambda n: (n[0], int(re.sub(r"\D", "", n) or 0), n))
     tag = re.fullmatch(r"channel_compare_?(.*)\.md", os.path.basename(argv[2]))
     tag = tag.group(1) if tag else ""
     sh = (f"SET={tag} " if tag else "") + "scripts/validation/channel.sh"
@@ -113,29 +123,37 @@ def main(argv):
          f"`{sh}` (one rank unless its command says `mpirun`, nice, on the shared 2-core machine; "
          f"`LIST=1 {sh}` prints every command); do not edit by hand.*\n",
          "Variants: " + "; ".join(f"`{v}` = {DESCR[v]}" for v in VARIANTS) + ". Case B runs in a "
-         "2 m long channel (`domain.Lx=2.0`). The stage times are the run's own, with no time "
-         "shift.\n",
+         "2 m long channel (`domain.Lx=2.0`) where its command says so; at n = 256 (the paper's "
+         "768 × 256) in the case file's 1.38 m, which its front with the side walls or the gate "
+         "stays well short of. The stage times are the run's own, with no time shift.\n",
          f"Each run's figures are also kept in `{os.path.basename(json_path)}` beside this page "
          "(its front thinned to at most 400 points); a run no longer on disk is listed from there"
          + (": " + ", ".join(from_record) if from_record else " (none here: every run was read "
             "from disk)") + ".\n",
          "| run | variant | status | " + " | ".join(c[1] for c in COLS) +
-         " | max abs dV/V | capped steps | wall (s) |",
-         "|---|---|---|" + "---|" * len(COLS) + "---|---|---|"]
+         " | max abs dV/V | max speed (m/s) | steps | capped steps | wall (s) |",
+         "|---|---|---|" + "---|" * len(COLS) + "---|---|---|---|---|"]
     for n in names:
         for v in VARIANTS:
             s = runs.get((n, v))
             if not s:
                 continue
-            L.append(f"| {n} | {v} | {s.get('status', '?')} | " +
-                     " | ".join(f(s.get(k), fmt) for k, _, fmt in COLS) +
-                     f" | {s['dv_max']:.1e} | {s.get('warnings_fp_capped_steps', '–')} | "
+            # a run that did not complete has no collapse figures (they would be those of the
+            # time it reached): its status says where it stopped
+            done = s.get("status") == "completed"
+            status = s.get("status", "?") if done else (
+                f"{s.get('status', '?')} at t = {f(s.get('t_reached'), '.3g')} s")
+            L.append(f"| {n} | {v} | {status} | " +
+                     " | ".join(f(s.get(k) if done else None, fmt) for k, _, fmt in COLS) +
+                     f" | {s['dv_max']:.1e} | {f(s.get('max_speed'), '.2f')} | "
+                     f"{s.get('steps') or '–'} | {s.get('warnings_fp_capped_steps', '–')} | "
                      f"{f(s.get('wall_s'), '.0f')} |")
-    L += ["\nWhat each piece of physics moves: the figure of the variant minus that of `none` on "
-          "the same grid (lengths relative, in %; times in s; angles in degrees).\n",
-          "| run | variant | runout | back wall | t1 | t2 | t3 | front speed | back slope | "
-          "front slope | p_max |",
-          "|---|---|---|---|---|---|---|---|---|---|---|"]
+    if any((n, "none") in shown and (n, v) in shown for n in names for v in VARIANTS[1:]):
+        L += ["\nWhat each piece of physics moves: the figure of the variant minus that of `none` "
+              "on the same grid (lengths relative, in %; times in s; angles in degrees).\n",
+              "| run | variant | runout | back wall | t1 | t2 | t3 | front speed | back slope | "
+              "front slope | p_max |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
 
     def rel(a, b):
         return None if a is None or b is None or b == 0 else 100 * (a / b - 1)
@@ -143,11 +161,11 @@ def main(argv):
     def dif(a, b):
         return None if a is None or b is None else a - b
     for n in names:
-        b = runs.get((n, "none"))
+        b = shown.get((n, "none"))
         if not b:
             continue
         for v in VARIANTS[1:]:
-            s = runs.get((n, v))
+            s = shown.get((n, v))
             if not s:
                 continue
             L.append(f"| {n} | {v} | {f(rel(s.get('runout_m'), b.get('runout_m')), '+.1f')} % | "
@@ -157,6 +175,23 @@ def main(argv):
                      f"{f(dif(s.get('slope_back_deg'), b.get('slope_back_deg')), '+.1f')} | "
                      f"{f(dif(s.get('slope_front_deg'), b.get('slope_front_deg')), '+.1f')} | "
                      f"{f(rel(s.get('max_p_granular_ratio'), b.get('max_p_granular_ratio')), '+.1f')} % |")
+    tall = [(n, v) for n in names for v in VARIANTS
+            if n.endswith("_tall") and (n, v) in shown and (n[:-5], v) in shown]
+    if tall:
+        L += ["\nThe taller domain (`<run>_tall`: the same cells and more rows above them, as its command says) "
+              "minus the case file's (lengths and speeds relative, in %; times in s; angles in "
+              "degrees).\n",
+              "| run | variant | runout | back wall | t1 | t2 | t3 | front speed | back slope | "
+              "front slope | p_max | max speed | steps |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        for n, v in tall:
+            s, b = shown[(n, v)], shown[(n[:-5], v)]
+            L.append(f"| {n} | {v} | " + " | ".join(
+                f(rel(s.get(k), b.get(k)), '+.1f') + " %" if k in REL else
+                f(dif(s.get(k), b.get(k)), '+.3f' if k.endswith("_s") else '+.1f')
+                for k in ("runout_m", "backwall_height_m", "t1_s", "t2_s", "t3_s",
+                          "front_speed_mps", "slope_back_deg", "slope_front_deg",
+                          "max_p_granular_ratio", "max_speed", "steps")) + " |")
     L += ["\nAgainst the experiments (Mangeney et al. 2010 for case A, Roche et al. 2010 for case B, "
           "as the paper reports them, `../shared/reference/paper_targets.md`): the run's figure "
           "and its difference from the experiment's (relative for lengths and speeds, in degrees "
@@ -167,7 +202,7 @@ def main(argv):
     for n in names:
         c = n[0]
         for v in VARIANTS:
-            s = runs.get((n, v))
+            s = shown.get((n, v))
             if not s or c not in EXPERIMENT:
                 continue
             cells = []
@@ -181,11 +216,13 @@ def main(argv):
                     else:
                         cells.append(f"{x:.4g} ({100 * (x / e - 1):+.1f} %)")
             L.append(f"| {n} | {v} | " + " | ".join(cells) + " |")
+    fig_names = [n for n in names if any((n, v) in shown for v in VARIANTS)
+                 and not (n.endswith("_tall") and n[:-5] in names)]
     figs = argv[3] if len(argv) > 3 else os.path.join(os.path.dirname(os.path.abspath(argv[2])), "figures")
     prefix = "channel_front_" + (tag + "_" if tag else "")
     L += ["\nThe front against time, each variant (no time shift): " + ", ".join(
-        f"[{n}](figures/{prefix}{n}.png)" for n in names) + "."]
-    front_figures(runs, names, figs, prefix)
+        f"[{n}](figures/{prefix}{n}.png)" for n in fig_names) + "."]
+    front_figures(shown, fig_names, figs, prefix)
     with open(argv[2], "w") as fh:
         fh.write("\n".join(L) + "\n")
     print(f"channel.py: wrote {argv[2]} ({len(runs)} runs)")
@@ -202,6 +239,10 @@ def front_figures(runs, names, folder, prefix):
             s = runs.get((n, v))
             if s:
                 ax.plot(*s["front"], color=colors[v], lw=1.3, label=f"{v}: {DESCR[v]}")
+            t = runs.get((n + "_tall", v))  # SET=lid: the taller domain's run on the same axes
+            if t:
+                ax.plot(*t["front"], color=colors[v], lw=1.3, ls="--",
+                        label=f"{v}, the taller domain")
         e = EXPERIMENT.get(n[0], {}).get("runout_m")
         if e:
             ax.axhline(e, color="gray", ls="--", lw=1, label=f"experiment's runout {e:g} m")

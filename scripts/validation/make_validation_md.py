@@ -64,7 +64,7 @@ CHANNEL_INTRO = (
 
 
 def channel_fine_section(path):
-    """The same on the finer grids (case A at n = 256, case B's `both` at n = 128),
+    """The same on the finer grids (case A at n = 256, case B's `both` at n = 128 and 256),
     `SET=fine scripts/validation/channel.sh` (docs/channel_compare_fine.md) if it exists."""
     return included_section(
         path, "The channel's side walls and the gate on the finer grids (issue 21)",
@@ -73,8 +73,24 @@ def channel_fine_section(path):
 
 CHANNEL_FINE_INTRO = (
     "The same, `none` and `both` only, on case A at n = 256 (the paper's finest grid) and on "
-    "case B at n = 128, made by `SET=fine scripts/validation/channel.sh` (the tables of "
-    "`docs/channel_compare_fine.md`).")
+    "case B at n = 128 (its `both` at the paper's 768 × 256 was started and stopped at "
+    "t = 0.35 s: `docs/CHANNEL.md` says why), made by `SET=fine scripts/validation/channel.sh` "
+    "(the tables of `docs/channel_compare_fine.md`).")
+
+
+def channel_lid_section(path):
+    """The domain's lid above the gate, `SET=lid scripts/validation/channel.sh`
+    (docs/channel_compare_lid.md) if it exists."""
+    return included_section(
+        path, "The channel's gate under the domain's lid (issue 21)", CHANNEL_LID_INTRO)
+
+
+CHANNEL_LID_INTRO = (
+    "`both` in the case files' domains and in domains a quarter taller (the same cells, more "
+    "rows above), made by `SET=lid scripts/validation/channel.sh` (the tables of "
+    "`docs/channel_compare_lid.md`): the case files' plate ends 2 cm below the lid, and the air "
+    "that the collapse drives behind the column returns through that gap while the plate is in "
+    "(`docs/CHANNEL.md`, \"The lid above the gate\").")
 
 
 def main():
@@ -91,6 +107,7 @@ def main():
     L += interface_section(os.path.join(os.path.dirname(a.out), "interface_compare.md"))
     L += channel_section(os.path.join(os.path.dirname(a.out), "channel_compare.md"))
     L += channel_fine_section(os.path.join(os.path.dirname(a.out), "channel_compare_fine.md"))
+    L += channel_lid_section(os.path.join(os.path.dirname(a.out), "channel_compare_lid.md"))
     with open(a.out, "w") as f:
         f.write("\n".join(L))
     print(f"wrote {a.out}")
