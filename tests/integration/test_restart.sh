@@ -3,8 +3,7 @@
 #  1. Case A in its channel (cases/ar07_rough_channel.toml: Drucker-Prager yield, Coulomb walls,
 #     the side walls' friction, the Anderson-accelerated fixed point: the state includes S, s_t
 #     and the side walls' s) at grid.n = 16 to t = 0.3 s, once uninterrupted and once
-#     sent SIGTERM twice at once after its first checkpoint (every 20 steps: the copy is taken
-#     for the same stop, core/Signal.hpp), then continued with
+#     killed with SIGTERM after its first checkpoint (every 20 steps), then continued with
 #     `granflow run --restart`. The killed run must exit 6 saying how to restart; the
 #     continued run must reproduce the uninterrupted one byte for byte (1 rank):
 #     diagnostics.csv, probes/bottom.csv, a VTK file written after the restart, the collapse
@@ -57,9 +56,6 @@ for _ in $(seq 1 600); do
   kill -0 "$pid" 2> /dev/null || break
   sleep 0.05
 done
-# Twice at once, as a rank gets it under mpirun when SLURM signals every process and mpirun
-# forwards its copy (or from the terminal's Ctrl-C and mpirun's): one stop, not a kill.
-kill -TERM "$pid" 2> /dev/null
 kill -TERM "$pid" 2> /dev/null
 rc=0; wait "$pid" || rc=$?
 stopped_at=$(sed -n 's/^step //p' "$tmp/sig/checkpoint/header.txt" 2> /dev/null)
