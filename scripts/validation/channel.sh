@@ -23,9 +23,10 @@
 # SET=lid: the domain's lid above the gate. The plate's top (boundary.gate.height) is 2 cm below
 # the lid in both channel cases, and while the plate is in, the air that the collapse drives to
 # the back of the column returns through that gap: at up to 10.7 m/s in case B. The real channel
-# is open above. `both` at n = 64 and 128 in the case file's domain and in one 25 % taller (the same
-# cells, one quarter more rows; the plate as before), into runs/channel_lid/, written by
-# channel.py to docs/channel_compare_lid.md (docs/CHANNEL.md says what it shows).
+# is open above. `gate` and `both` at n = 64 and `both` at n = 128, each in the case file's
+# domain and in one 25 % taller (the same cells, one quarter more rows; the plate as before),
+# into runs/channel_lid/, written by channel.py to docs/channel_compare_lid.md (docs/CHANNEL.md
+# says what it shows).
 #
 # A run whose summary.json says "completed" is skipped unless FORCE=1. GRANFLOW=path chooses
 # the binary (default build/granflow), OUT_ROOT the output root (default runs/channel).
@@ -40,7 +41,7 @@ case "$set_name" in
   fine) out_root="${OUT_ROOT:-$root/runs/channel_fine}"; doc="$root/docs/channel_compare_fine.md"
         variants="${VARIANTS:-none both}" ;;
   lid) out_root="${OUT_ROOT:-$root/runs/channel_lid}"; doc="$root/docs/channel_compare_lid.md"
-        variants="${VARIANTS:-both}" ;;
+        variants="${VARIANTS:-gate both}" ;;
   *) echo "channel.sh: SET = '$set_name' is not allowed (main, fine or lid)" >&2; exit 2 ;;
 esac
 opts0="--set output.vtk_interval=0"
@@ -64,10 +65,10 @@ if [[ "$set_name" == lid ]]; then
     "a_n64_tall|cases/ar07_rough|--set grid.n=80 --set domain.Ly=0.25 $opts0"
     "b_n64|cases/ar2_smooth|--set grid.n=64 --set domain.Lx=2.0 $opts0"
     "b_n64_tall|cases/ar2_smooth|--set grid.n=80 --set domain.Ly=0.575 --set domain.Lx=2.0 $opts0"
-    "a_n128|cases/ar07_rough|--set grid.n=128 $opts0"
-    "a_n128_tall|cases/ar07_rough|--set grid.n=160 --set domain.Ly=0.25 $opts0"
-    "b_n128|cases/ar2_smooth|--set grid.n=128 --set domain.Lx=2.0 $opts0"
-    "b_n128_tall|cases/ar2_smooth|--set grid.n=160 --set domain.Ly=0.575 --set domain.Lx=2.0 $opts0"
+    "a_n128|cases/ar07_rough|--set grid.n=128 $opts0|1|both"
+    "a_n128_tall|cases/ar07_rough|--set grid.n=160 --set domain.Ly=0.25 $opts0|1|both"
+    "b_n128|cases/ar2_smooth|--set grid.n=128 --set domain.Lx=2.0 $opts0|1|both"
+    "b_n128_tall|cases/ar2_smooth|--set grid.n=160 --set domain.Ly=0.575 --set domain.Lx=2.0 $opts0|1|both"
   )
 fi
 # variant | case file suffix | options

@@ -86,7 +86,7 @@ def channel_lid_section(path):
 
 
 CHANNEL_LID_INTRO = (
-    "`both` in the case files' domains and in domains a quarter taller (the same cells, more "
+    "`gate` and `both` in the case files' domains and in domains a quarter taller (the same cells, more "
     "rows above), made by `SET=lid scripts/validation/channel.sh` (the tables of "
     "`docs/channel_compare_lid.md`): the case files' plate ends 2 cm below the lid, and the air "
     "that the collapse drives behind the column returns through that gap while the plate is in "
