@@ -222,10 +222,11 @@ def main(argv):
                 runs.append(r)
     # A run no longer on disk is read from the page's JSON (records.py).
     json_path = records.json_path(out_md)
-    extra = records.merge(json_path, {r["name"]: r for r in runs},
-                          lambda r: {k: v for k, v in r.items() if k != "source"})
-    from_record = sorted(extra)
-    runs = sorted(runs + [dict(r, source="record") for r in extra.values()], key=lambda r: r["name"])
+    kept_only = records.merge(json_path, {r["name"]: r for r in runs},
+                              lambda r: {k: v for k, v in r.items() if k != "source"})
+    from_record = sorted(kept_only)
+    runs = sorted(runs + [dict(r, source="record") for r in kept_only.values()],
+                  key=lambda r: r["name"])
     done = [r for r in runs if r["ok"]]
     variants = sorted({r["variant"] for r in runs}, key=lambda v: (list(VARIANT_LABELS).index(v)
                                                                    if v in VARIANT_LABELS else 99, v))

@@ -33,6 +33,26 @@ VARIANTS = ("none", "side", "gate", "both")
 # figures compared as relative changes (the others as differences)
 REL = {"runout_m", "backwall_height_m", "front_speed_mps", "max_p_granular_ratio", "max_speed",
        "steps"}
+# the figures of the tables of differences between two runs
+MOVES = ("runout_m", "backwall_height_m", "t1_s", "t2_s", "t3_s", "front_speed_mps",
+         "slope_back_deg", "slope_front_deg", "max_p_granular_ratio")
+
+
+def deltas(s, b, keys):
+    """The cells of run s against run b: relative (%) for REL, else differences (times in s with
+    3 decimals, angles with 1)."""
+    cells = []
+    for k in keys:
+        x, y = s.get(k), b.get(k)
+        if k in REL:
+            d = None if x is None or y is None or y == 0 else 100 * (x / y - 1)
+            cells.append(f(d, "+.1f") + " %")
+        else:
+            d = None if x is None or y is None else x - y
+            cells.append(f(d, "+.3f" if k.endswith("_s") else "+.1f"))
+    return cells
+
+
 DESCR = {"none": "the paper's 2D model", "side": "side walls", "gate": "gate",
          "both": "side walls and gate"}
 # name: column of summary.json, label, format
@@ -155,43 +175,26 @@ def main(argv):
               "front slope | p_max |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]
 
-    def rel(a, b):
-        return None if a is None or b is None or b == 0 else 100 * (a / b - 1)
-
-    def dif(a, b):
-        return None if a is None or b is None else a - b
     for n in names:
         b = shown.get((n, "none"))
         if not b:
             continue
         for v in VARIANTS[1:]:
             s = shown.get((n, v))
-            if not s:
-                continue
-            L.append(f"| {n} | {v} | {f(rel(s.get('runout_m'), b.get('runout_m')), '+.1f')} % | "
-                     f"{f(rel(s.get('backwall_height_m'), b.get('backwall_height_m')), '+.1f')} % | "
-                     + " | ".join(f(dif(s.get(k), b.get(k)), '+.3f') for k in ("t1_s", "t2_s", "t3_s"))
-                     + f" | {f(rel(s.get('front_speed_mps'), b.get('front_speed_mps')), '+.1f')} % | "
-                     f"{f(dif(s.get('slope_back_deg'), b.get('slope_back_deg')), '+.1f')} | "
-                     f"{f(dif(s.get('slope_front_deg'), b.get('slope_front_deg')), '+.1f')} | "
-                     f"{f(rel(s.get('max_p_granular_ratio'), b.get('max_p_granular_ratio')), '+.1f')} % |")
+            if s:
+                L.append(f"| {n} | {v} | " + " | ".join(deltas(s, b, MOVES)) + " |")
     tall = [(n, v) for n in names for v in VARIANTS
             if n.endswith("_tall") and (n, v) in shown and (n[:-5], v) in shown]
     if tall:
-        L += ["\nThe taller domain (`<run>_tall`: the same cells and more rows above them, as its command says) "
-              "minus the case file's (lengths and speeds relative, in %; times in s; angles in "
-              "degrees).\n",
+        L += ["\nThe taller domain (`<run>_tall`: the same cells and more rows above them, as "
+              "its command says) minus the case file's (lengths and speeds relative, in %; times "
+              "in s; angles in degrees).\n",
               "| run | variant | runout | back wall | t1 | t2 | t3 | front speed | back slope | "
               "front slope | p_max | max speed | steps |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for n, v in tall:
-            s, b = shown[(n, v)], shown[(n[:-5], v)]
             L.append(f"| {n} | {v} | " + " | ".join(
-                f(rel(s.get(k), b.get(k)), '+.1f') + " %" if k in REL else
-                f(dif(s.get(k), b.get(k)), '+.3f' if k.endswith("_s") else '+.1f')
-                for k in ("runout_m", "backwall_height_m", "t1_s", "t2_s", "t3_s",
-                          "front_speed_mps", "slope_back_deg", "slope_front_deg",
-                          "max_p_granular_ratio", "max_speed", "steps")) + " |")
+                deltas(shown[(n, v)], shown[(n[:-5], v)], MOVES + ("max_speed", "steps"))) + " |")
     L += ["\nAgainst the experiments (Mangeney et al. 2010 for case A, Roche et al. 2010 for case B, "
           "as the paper reports them, `../shared/reference/paper_targets.md`): the run's figure "
           "and its difference from the experiment's (relative for lengths and speeds, in degrees "

@@ -22,7 +22,7 @@
 #
 # SET=lid: the domain's lid above the gate. The plate's top (boundary.gate.height) is 2 cm below
 # the lid in both channel cases, and while the plate is in, the air that the collapse drives to
-# the back of the column returns through that gap: at up to 10.7 m/s in case B. The real channel
+# the back of the column returns through that gap: at 10-13 m/s in case B. The real channel
 # is open above. `gate` and `both` at n = 64 and `both` at n = 128, each in the case file's
 # domain and in one 25 % taller (the same cells, one quarter more rows; the plate as before),
 # into runs/channel_lid/, written by channel.py to docs/channel_compare_lid.md (docs/CHANNEL.md

@@ -73,8 +73,8 @@ def channel_fine_section(path):
 
 CHANNEL_FINE_INTRO = (
     "The same, `none` and `both` only, on case A at n = 256 (the paper's finest grid) and on "
-    "case B at n = 128 (its `both` at the paper's 768 × 256 was started and stopped at "
-    "t = 0.35 s: `docs/CHANNEL.md` says why), made by `SET=fine scripts/validation/channel.sh` "
+    "case B at n = 128 (its `both` at the paper's 768 × 256 was started and stopped: "
+    "`docs/CHANNEL.md` says where and why), made by `SET=fine scripts/validation/channel.sh` "
     "(the tables of `docs/channel_compare_fine.md`).")
 
 
@@ -86,11 +86,11 @@ def channel_lid_section(path):
 
 
 CHANNEL_LID_INTRO = (
-    "`gate` and `both` in the case files' domains and in domains a quarter taller (the same cells, more "
-    "rows above), made by `SET=lid scripts/validation/channel.sh` (the tables of "
+    "`gate` and `both` in the case files' domains and in domains a quarter taller (the same "
+    "cells, more rows above), made by `SET=lid scripts/validation/channel.sh` (the tables of "
     "`docs/channel_compare_lid.md`): the case files' plate ends 2 cm below the lid, and the air "
     "that the collapse drives behind the column returns through that gap while the plate is in "
-    "(`docs/CHANNEL.md`, \"The lid above the gate\").")
+    "(`docs/CHANNEL.md`, \"The gate's effect on the air, and the lid above it\").")
 
 
 def main():

@@ -5,8 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
-#include <ctime>
+#include <thread>
 
 #include "core/Signal.hpp"
 
@@ -21,12 +22,6 @@ int child_status(void (*body)()) {
   int status = 0;
   waitpid(pid, &status, 0);
   return status;
-}
-
-void sleep_seconds(double s) {
-  timespec ts{static_cast<time_t>(s), static_cast<long>((s - static_cast<double>(static_cast<time_t>(s))) * 1e9)};
-  while (nanosleep(&ts, &ts) != 0) {
-  }
 }
 
 }  // namespace
@@ -50,7 +45,7 @@ TEST(Signal, SecondStopAfterTwoSecondsKills) {
   const int st = child_status([] {
     gf::signal::install_stop_handlers();
     std::raise(SIGINT);
-    sleep_seconds(2.2);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2200));
     std::raise(SIGINT);
     _exit(0);
   });
