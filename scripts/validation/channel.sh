@@ -29,7 +29,8 @@
 # says what it shows).
 #
 # A run whose summary.json says "completed" is skipped unless FORCE=1. GRANFLOW=path chooses
-# the binary (default build/granflow), OUT_ROOT the output root (default runs/channel).
+# the binary (default build/granflow), OUT_ROOT the output root (default runs/channel), RANKS the
+# rank count of every run (default: the run's own, 1 unless its entry says otherwise).
 set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
@@ -84,7 +85,7 @@ mkdir -p "$out_root"
 source "$root/scripts/validation/run_lib.sh"
 for r in "${RUNS[@]}"; do
   IFS='|' read -r name stem opts ranks rvars <<<"$r"
-  ranks="${ranks:-1}"
+  ranks="${RANKS:-${ranks:-1}}"
   rvars="${rvars:-$variants}"
   if [[ -n "${ONLY:-}" && " $ONLY " != *" $name "* ]]; then continue; fi
   for v in "${VARS[@]}"; do
