@@ -17,7 +17,8 @@
 # SET=fine: case A at n = 256 (on 2 ranks) and case B at n = 128, `none` and `both`, and case B at
 # the paper's grid 768 x 256 (n = 256 in the case file's 1.38 m domain: with the side walls or the
 # gate its front stops short of 1.1 m; `none` is not run there, its front reaches the far wall:
-# docs/VALIDATION.md has it), into runs/channel_fine/, written by channel.py to
+# docs/VALIDATION.md has it; `VARIANTS="side gate"` adds the side walls alone and the gate alone
+# at n = 256, about 2.5 h each on one core), into runs/channel_fine/, written by channel.py to
 # docs/channel_compare_fine.md (its figures channel_front_fine_*.png).
 #
 # SET=lid: the domain's lid above the gate. The plate's top (boundary.gate.height) is 2 cm below
@@ -57,7 +58,7 @@ if [[ "$set_name" == fine ]]; then
   RUNS=(
     "b_n128|cases/ar2_smooth|--set grid.n=128 --set domain.Lx=2.0 $opts0"
     "a_n256|cases/ar07_rough|--set grid.n=256 $opts0|2"
-    "b_n256|cases/ar2_smooth|--set grid.n=256 $opts0|1|both"
+    "b_n256|cases/ar2_smooth|--set grid.n=256 $opts0|1|side gate both"
   )
 fi
 if [[ "$set_name" == lid ]]; then
