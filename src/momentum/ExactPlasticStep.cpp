@@ -1,0 +1,235 @@
+// One step's plastic problem solved exactly: the method of multipliers with a semismooth Newton
+// inner solve (see ExactPlasticStep.hpp).
+#include "momentum/ExactPlasticStep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/Error.hpp"
+
+namespace gf::momentum {
+
+ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
+  GF_PETSC(SNESCreate(g.comm(), &snes_));
+  GF_PETSC(SNESSetOptionsPrefix(snes_, "exact_"));
+  GF_PETSC(SNESSetType(snes_, SNESNEWTONLS));
+  KSP ksp;
+  PC pc;
+  GF_PETSC(SNESGetKSP(snes_, &ksp));
+  GF_PETSC(KSPSetType(ksp, KSPPREONLY));
+  GF_PETSC(KSPGetPC(ksp, &pc));
+  GF_PETSC(PCSetType(pc, PCLU));
+  // PETSc's own LU is serial; on more ranks MUMPS (in Debian's petsc-dev).
+  if (g.size() > 1) GF_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &lambda_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &D_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &T_));
+  PetscInt n;
+  GF_PETSC(VecGetLocalSize(D_, &n));
+  GF_PETSC(MatCreateAIJ(g.comm(), n, n, PETSC_DETERMINE, PETSC_DETERMINE, 3, nullptr, 0, nullptr,
+                        &M_));
+}
+
+ExactPlasticStep::~ExactPlasticStep() {
+  SNESDestroy(&snes_);
+  MatDestroy(&J_);
+  MatDestroy(&CMB_);
+  MatDestroy(&M_);
+  VecDestroy(&lambda_);
+  VecDestroy(&D_);
+  VecDestroy(&T_);
+}
+
+// T = Pi kappa P(lambda + c E u) and, with jacobian, its derivative M = Pi kappa c P'(q) L in
+// the dm_ten numbering (a 3 x 3 block per cell, every entry set so that the pattern stays).
+void ExactPlasticStep::plastic_stress(Vec u, Vec T, bool jacobian) {
+  const Box& b = g_.box();
+  GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
+  const PetscScalar ***d, ***lam, **k, **c;
+  PetscScalar*** t;
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), D_, &d));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), lambda_, &lam));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), kappa_, &k));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), c_, &c));
+  GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), T, &t));
+  PetscInt r0;
+  GF_PETSC(VecGetOwnershipRange(D_, &r0, nullptr));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double kk = k[j][i] > 0 ? k[j][i] : 0.0;
+      const double q0 = lam[j][i][0] + c[j][i] * 0.5 * (d[j][i][0] - d[j][i][2]);
+      const double q1 = lam[j][i][1] + c[j][i] * d[j][i][1];
+      const double nq = std::hypot(q0, q1);
+      const double f = nq > 1 ? 1 / nq : 1.0;
+      t[j][i][0] = kk * f * q0;
+      t[j][i][1] = kk * f * q1;
+      t[j][i][2] = -kk * f * q0;
+      if (!jacobian) continue;
+      // G = kappa c P'(q): I inside the ball, (I - n n^T) / |q| outside.
+      double G[2][2] = {{1, 0}, {0, 1}};
+      if (nq > 1) {
+        const double n0 = q0 / nq, n1 = q1 / nq;
+        G[0][0] = (1 - n0 * n0) / nq;
+        G[0][1] = G[1][0] = -n0 * n1 / nq;
+        G[1][1] = (1 - n1 * n1) / nq;
+      }
+      const double kc = kk * c[j][i];
+      // G L with L = [[1/2, 0, -1/2], [0, 1, 0]], then Pi: rows sxx, sxy, -sxx.
+      double GL[2][3];
+      for (int a = 0; a < 2; ++a) {
+        GL[a][0] = kc * 0.5 * G[a][0];
+        GL[a][1] = kc * G[a][1];
+        GL[a][2] = -kc * 0.5 * G[a][0];
+      }
+      const PetscInt base = r0 + ((j - b.ys) * b.xm + (i - b.xs)) * 3;
+      const PetscInt idx[3] = {base, base + 1, base + 2};
+      const double vals[9] = {GL[0][0], GL[0][1], GL[0][2], GL[1][0], GL[1][1],
+                              GL[1][2], -GL[0][0], -GL[0][1], -GL[0][2]};
+      GF_PETSC(MatSetValues(M_, 3, idx, 3, idx, vals, INSERT_VALUES));
+    }
+  GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), T, &t));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), c_, &c));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), kappa_, &k));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), lambda_, &lam));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), D_, &d));
+  if (jacobian) {
+    GF_PETSC(MatAssemblyBegin(M_, MAT_FINAL_ASSEMBLY));
+    GF_PETSC(MatAssemblyEnd(M_, MAT_FINAL_ASSEMBLY));
+  }
+}
+
+PetscErrorCode ExactPlasticStep::residual(SNES, Vec u, Vec F, void* ctx) {
+  auto* self = static_cast<ExactPlasticStep*>(ctx);
+  try {
+    self->plastic_stress(u, self->T_, false);
+    GF_PETSC(MatMult(self->A_, u, F));
+    GF_PETSC(VecAXPY(F, -1.0, self->b_));
+    Vec CT;
+    GF_PETSC(VecDuplicate(F, &CT));
+    GF_PETSC(MatMult(self->m_->C, self->T_, CT));
+    GF_PETSC(VecAXPY(F, -1.0, CT));
+    GF_PETSC(VecDestroy(&CT));
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
+
+// J = A - C M B.
+PetscErrorCode ExactPlasticStep::jacobian(SNES, Vec u, Mat J, Mat, void* ctx) {
+  auto* self = static_cast<ExactPlasticStep*>(ctx);
+  try {
+    self->plastic_stress(u, self->T_, true);
+    GF_PETSC(MatMatMatMult(self->m_->C, self->M_, self->m_->B, MAT_REUSE_MATRIX, PETSC_DEFAULT,
+                           &self->CMB_));
+    GF_PETSC(MatZeroEntries(J));
+    GF_PETSC(MatAXPY(J, 1.0, self->A_, SUBSET_NONZERO_PATTERN));
+    GF_PETSC(MatAXPY(J, -1.0, self->CMB_, SUBSET_NONZERO_PATTERN));
+  } catch (const std::exception&) {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
+
+ExactStepStats ExactPlasticStep::solve(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c,
+                                       Vec u, Vec S, const ExactStepOptions& opt) {
+  A_ = A;
+  b_ = b;
+  m_ = &m;
+  kappa_ = kappa;
+  c_ = c;
+  GF_PETSC(VecCopy(S, lambda_));
+  // The Jacobian's pattern: A's and that of C M B with every 3 x 3 block of M full.
+  MatDestroy(&CMB_);
+  MatDestroy(&J_);
+  plastic_stress(u, T_, true);
+  GF_PETSC(MatMatMatMult(m.C, M_, m.B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CMB_));
+  GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
+  GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));
+  Vec F;
+  GF_PETSC(VecDuplicate(u, &F));
+  GF_PETSC(SNESSetFunction(snes_, F, &ExactPlasticStep::residual, this));
+  GF_PETSC(SNESSetJacobian(snes_, J_, J_, &ExactPlasticStep::jacobian, this));
+  // The residual's scale: the drive b and the largest plastic force, C Pi kappa (1, 1) (its
+  // cancellation against b sets the round-off floor of F).
+  double scale;
+  {
+    double bnorm, tnorm;
+    GF_PETSC(VecNorm(b, NORM_2, &bnorm));
+    PetscScalar*** t;
+    const PetscScalar** k;
+    const Box& bx = g_.box();
+    GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), T_, &t));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), kappa, &k));
+    for (PetscInt j = bx.ys; j < bx.ye(); ++j)
+      for (PetscInt i = bx.xs; i < bx.xe(); ++i) {
+        const double kk = std::max(k[j][i], 0.0);
+        t[j][i][0] = kk;
+        t[j][i][1] = kk;
+        t[j][i][2] = -kk;
+      }
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), kappa, &k));
+    GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), T_, &t));
+    GF_PETSC(MatMult(m.C, T_, F));
+    GF_PETSC(VecNorm(F, NORM_2, &tnorm));
+    scale = bnorm + tnorm;
+  }
+  GF_PETSC(SNESSetTolerances(snes_, 1e-13 * scale, opt.inner_rtol, 0.0, 200, 100000));
+  GF_PETSC(SNESSetFromOptions(snes_));
+
+  const Box& bx = g_.box();
+  ExactStepStats st;
+  for (st.outer = 1; st.outer <= opt.max_outer; ++st.outer) {
+    GF_PETSC(SNESSolve(snes_, nullptr, u));
+    SNESConvergedReason why;
+    PetscInt its;
+    GF_PETSC(SNESGetConvergedReason(snes_, &why));
+    GF_PETSC(SNESGetIterationNumber(snes_, &its));
+    st.newton += static_cast<int>(its);
+    double fnorm;
+    GF_PETSC(SNESGetFunctionNorm(snes_, &fnorm));
+    // A line search that cannot decrease |F| any more at the round-off floor has converged.
+    if (why == SNES_DIVERGED_LINE_SEARCH && fnorm <= 1e-10 * scale) why = SNES_CONVERGED_FNORM_ABS;
+    if (why < 0)
+      throw RunError("exact plastic step: Newton's method failed (" +
+                     std::string(SNESConvergedReasons[why]) + ", |F| = " + std::to_string(fnorm) +
+                     ") in multiplier update " + std::to_string(st.outer) + "; try -exact_snes_monitor to see it");
+    // lambda <- P(lambda + c E u) = T / kappa, and its change.
+    plastic_stress(u, T_, false);
+    double change = 0;
+    {
+      PetscScalar*** lam;
+      const PetscScalar ***t, **k;
+      GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), lambda_, &lam));
+      GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), T_, &t));
+      GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), kappa, &k));
+      for (PetscInt j = bx.ys; j < bx.ye(); ++j)
+        for (PetscInt i = bx.xs; i < bx.xe(); ++i) {
+          if (k[j][i] <= 0) {
+            lam[j][i][0] = lam[j][i][1] = lam[j][i][2] = 0;
+            continue;
+          }
+          const double s0 = t[j][i][0] / k[j][i], s1 = t[j][i][1] / k[j][i];
+          change = std::max(change, std::hypot(s0 - lam[j][i][0], s1 - lam[j][i][1]));
+          lam[j][i][0] = s0;
+          lam[j][i][1] = s1;
+          lam[j][i][2] = -s0;
+        }
+      GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), kappa, &k));
+      GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), T_, &t));
+      GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), lambda_, &lam));
+    }
+    st.change = g_.max(change);
+    if (st.change <= opt.tol) {
+      st.converged = true;
+      break;
+    }
+  }
+  st.outer = std::min(st.outer, opt.max_outer);
+  GF_PETSC(VecCopy(lambda_, S));
+  GF_PETSC(VecDestroy(&F));
+  return st;
+}
+
+}  // namespace gf::momentum

@@ -1,0 +1,154 @@
+// The exact solve of one step's plastic problem (momentum/ExactPlasticStep.hpp), on 1 and 2
+// ranks, against the steady Bingham flow in a periodic channel between no-slip plates driven by
+// a body force f (the step's mass term made negligible, rho a0/dt = 1e-8 Pa s/m^2, so that one
+// step is the steady problem):
+//  * below the threshold (kappa > f H / 2) the plug fills the channel: u = 0 to round-off, for
+//    two augmentations c a factor 100 apart;
+//  * above it, the Bingham Poiseuille profile: the plug |y - H/2| < kappa / f at the speed
+//    f/(2 eta) (H^2/4 - y_p^2) - kappa/eta (H/2 - y_p), parabolic outside; the error against it
+//    at two grids (it falls with h), and the answer independent of c to the solver tolerance.
+#include <gtest/gtest.h>
+#include <petscdmda.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "boundary/Boundary.hpp"
+#include "fields/Fields.hpp"
+#include "grid/Grid.hpp"
+#include "momentum/ExactPlasticStep.hpp"
+#include "momentum/Momentum.hpp"
+#include "momentum/PlasticMatrices.hpp"
+
+using gf::Field;
+using gf::Grid;
+
+namespace {
+
+constexpr double kH = 1.0, kEta = 0.1, kF = 1.0, kRho = 1.0, kA0dt = 1e-8;
+
+double bingham_poiseuille(double y, double kappa) {
+  const double yt = std::abs(y - 0.5 * kH), yp = std::min(kappa / kF, 0.5 * kH);
+  const double ye = std::max(yt, yp);
+  return kF / (2 * kEta) * (0.25 * kH * kH - ye * ye) - kappa / kEta * (0.5 * kH - ye);
+}
+
+struct Result {
+  double umax = 0;   // largest |u| on the u-faces, m/s
+  double err = 0;    // largest |u - exact| / max exact (0 if exact is 0)
+  double vmax = 0;   // largest |v|
+  gf::momentum::ExactStepStats st;
+};
+
+// The channel: 8 x ny cells, periodic in x.
+Grid channel(PetscInt ny) { return Grid(PETSC_COMM_WORLD, 8, ny, 8 * kH / ny, kH, true); }
+
+// One steady step on g; u_out (optional, a dm_vel Vec of g) gets the velocity.
+Result steady(const Grid& g, double kappa, double c_factor, Vec u_out = nullptr) {
+  gf::Boundaries bc;
+  bc.bottom.type = gf::WallType::NoSlip;
+  bc.top.type = gf::WallType::NoSlip;
+  gf::momentum::Predictor pred(g, bc, 1e-12);
+  Field rho(g.dm_cell(), "rho"), eta(g.dm_cell(), "eta"), kap(g.dm_cell(), "kappa"),
+      c(g.dm_cell(), "c"), b(g.dm_vel(), "b"), S(g.dm_ten(), "S");
+  VecSet(rho, kRho);
+  VecSet(eta, kEta);
+  VecSet(kap, kappa);
+  const double h = g.hy();
+  VecSet(c, c_factor * (2 * kEta + kRho * kA0dt * h * h) / kappa);
+  pred.assemble(rho, eta, eta, kA0dt);
+  {
+    const gf::Box& bx = g.box();
+    gf::Vel** a;
+    DMDAVecGetArray(g.dm_vel(), b, &a);
+    for (PetscInt j = bx.ys; j < bx.ye(); ++j)
+      for (PetscInt i = bx.xs; i < bx.xe(); ++i) {
+        a[j][i].u = kF;
+        a[j][i].v = 0;
+      }
+    DMDAVecRestoreArray(g.dm_vel(), b, &a);
+  }
+  gf::momentum::PlasticMatrices m;
+  gf::momentum::assemble_plastic_matrices(g, pred, eta, m);
+  Vec u;
+  DMCreateGlobalVector(g.dm_vel(), &u);
+  VecSet(u, 0.0);
+  VecSet(S, 0.0);
+  gf::momentum::ExactPlasticStep step(g);
+  Result r;
+  r.st = step.solve(pred.matrix(), b, m, kap, c, u, S);
+  const gf::Box& bx = g.box();
+  const gf::Vel** a;
+  DMDAVecGetArrayRead(g.dm_vel(), u, &a);
+  double umax = 0, vmax = 0, emax = 0, ref = 0;
+  for (PetscInt j = bx.ys; j < bx.ye(); ++j)
+    for (PetscInt i = bx.xs; i < bx.xe(); ++i) {
+      const double ex = bingham_poiseuille(bx.yc(j), kappa);
+      umax = std::max(umax, std::abs(a[j][i].u));
+      vmax = std::max(vmax, std::abs(a[j][i].v));
+      emax = std::max(emax, std::abs(a[j][i].u - ex));
+      ref = std::max(ref, std::abs(ex));
+    }
+  DMDAVecRestoreArrayRead(g.dm_vel(), u, &a);
+  r.umax = g.max(umax);
+  r.vmax = g.max(vmax);
+  ref = g.max(ref);
+  r.err = ref > 0 ? g.max(emax) / ref : g.max(emax);
+  if (u_out) VecCopy(u, u_out);
+  VecDestroy(&u);
+  return r;
+}
+
+}  // namespace
+
+TEST(ExactPlasticStep, PlugBelowTheThresholdDoesNotMove) {
+  const Grid g = channel(32);
+  for (double cf : {1.0, 3.0}) {
+    const Result r = steady(g, 0.75 * kF * kH, cf);
+    PetscPrintf(PETSC_COMM_WORLD,
+                "kappa = 1.5 f H/2, c factor %g: max |u| %.1e, max |v| %.1e m/s (%d multiplier "
+                "updates, %d Newton iterations, last change %.1e)\n",
+                cf, r.umax, r.vmax, r.st.outer, r.st.newton, r.st.change);
+    EXPECT_TRUE(r.st.converged);
+    // Issue 19's criterion for a block below its friction: below 1e-8 m/s (the velocity scale
+    // f H^2 / eta is 10 m/s).
+    EXPECT_LT(r.umax, 1e-9);
+    EXPECT_LT(r.vmax, 1e-9);
+  }
+}
+
+TEST(ExactPlasticStep, BinghamPoiseuilleProfile) {
+  const double kappa = 0.2 * kF * kH;  // plug |y - H/2| < 0.2 H
+  Result res[2];
+  const PetscInt grids[2] = {16, 32};
+  for (int k = 0; k < 2; ++k) {
+    const Grid g = channel(grids[k]);
+    res[k] = steady(g, kappa, 10.0);
+    PetscPrintf(PETSC_COMM_WORLD,
+                "ny = %d: max |u - exact| / max exact = %.2e, max |v| %.1e (%d multiplier "
+                "updates, %d Newton iterations)\n",
+                static_cast<int>(grids[k]), res[k].err, res[k].vmax, res[k].st.outer,
+                res[k].st.newton);
+    EXPECT_TRUE(res[k].st.converged);
+  }
+  const double order = std::log2(res[0].err / res[1].err);
+  PetscPrintf(PETSC_COMM_WORLD, "observed order %.2f\n", order);
+  EXPECT_LT(res[1].err, 0.02);
+  EXPECT_GT(order, 0.9);
+  // The answer does not depend on c.
+  const Grid g = channel(16);
+  Vec u1, u2;
+  DMCreateGlobalVector(g.dm_vel(), &u1);
+  DMCreateGlobalVector(g.dm_vel(), &u2);
+  steady(g, kappa, 3.0, u1);
+  steady(g, kappa, 10.0, u2);
+  VecAXPY(u2, -1.0, u1);
+  double d, n;
+  VecNorm(u2, NORM_INFINITY, &d);
+  VecNorm(u1, NORM_INFINITY, &n);
+  PetscPrintf(PETSC_COMM_WORLD, "c factor 3 against 10: max |du| / max |u| = %.1e\n", d / n);
+  EXPECT_LT(d / n, 1e-8);
+  VecDestroy(&u2);
+  VecDestroy(&u1);
+}
