@@ -18,7 +18,8 @@
 # the paper's grid 768 x 256 (n = 256 in the case file's 1.38 m domain: with the side walls or the
 # gate its front stops short of 1.1 m; `none` is not run there, its front reaches the far wall:
 # docs/VALIDATION.md has it; `VARIANTS="side gate"` adds the side walls alone and the gate alone
-# at n = 256, about 2.5 h each on one core), into runs/channel_fine/, written by channel.py to
+# at n = 256: `both` took 9127 s (1, 2, then 1 rank, beside another run), `side` ran 8927 s to
+# t = 1.05 s of 1.36 s on one core), into runs/channel_fine/, written by channel.py to
 # docs/channel_compare_fine.md (its figures channel_front_fine_*.png).
 #
 # SET=lid: the domain's lid above the gate. The plate's top (boundary.gate.height) is 2 cm below

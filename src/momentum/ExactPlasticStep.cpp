@@ -25,6 +25,7 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
   GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &lambda_));
   GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &D_));
   GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &T_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &CT_));
   PetscInt n;
   GF_PETSC(VecGetLocalSize(D_, &n));
   GF_PETSC(MatCreateAIJ(g.comm(), n, n, PETSC_DETERMINE, PETSC_DETERMINE, 3, nullptr, 0, nullptr,
@@ -39,6 +40,7 @@ ExactPlasticStep::~ExactPlasticStep() {
   VecDestroy(&lambda_);
   VecDestroy(&D_);
   VecDestroy(&T_);
+  VecDestroy(&CT_);
 }
 
 // T = Pi kappa P(lambda + c E u) and, with jacobian, its derivative M = Pi kappa c P'(q) L in
@@ -105,11 +107,8 @@ PetscErrorCode ExactPlasticStep::residual(SNES, Vec u, Vec F, void* ctx) {
     self->plastic_stress(u, self->T_, false);
     GF_PETSC(MatMult(self->A_, u, F));
     GF_PETSC(VecAXPY(F, -1.0, self->b_));
-    Vec CT;
-    GF_PETSC(VecDuplicate(F, &CT));
-    GF_PETSC(MatMult(self->m_->C, self->T_, CT));
-    GF_PETSC(VecAXPY(F, -1.0, CT));
-    GF_PETSC(VecDestroy(&CT));
+    GF_PETSC(MatMult(self->m_->C, self->T_, self->CT_));
+    GF_PETSC(VecAXPY(F, -1.0, self->CT_));
   } catch (const std::exception&) {
     return PETSC_ERR_LIB;
   }

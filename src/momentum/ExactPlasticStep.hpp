@@ -26,8 +26,8 @@
 // multiplier updates of one Newton iteration each); the Bingham Poiseuille profile with error
 // 1.1e-2 and 2.7e-3 at 16 and 32 cells across (second order), independent of c to 3e-11; but
 // the outer loop is slow where the flow yields (52 and 130 updates at c factor 10; at 64 cells
-// not converged in 200 updates and 4084 Newton iterations), and at c factor 100 the Newton
-// line search on |F| fails on the held plug. Not robust enough for the stepper: the
+// not converged in 200 updates and 4084 Newton iterations, error 6.8e-4), and at c factor 100
+// the Newton line search on |F| fails on the held plug. Not robust enough for the stepper: the
 // primal-dual Newton step of docs/RHEOLOGY.md (item 3) is the next candidate for the inner solve.
 //
 // The pressure is not in this problem (the projection of eq. 32 follows it), so a zone held
@@ -76,7 +76,7 @@ class ExactPlasticStep {
   Mat A_ = nullptr, J_ = nullptr, CMB_ = nullptr, M_ = nullptr;
   const PlasticMatrices* m_ = nullptr;
   Vec b_ = nullptr, kappa_ = nullptr, c_ = nullptr, lambda_ = nullptr, D_ = nullptr,
-      T_ = nullptr;
+      T_ = nullptr, CT_ = nullptr;  // CT_: C T of the residual (dm_vel)
   void plastic_stress(Vec u, Vec T, bool jacobian);
   static PetscErrorCode residual(SNES, Vec u, Vec F, void* ctx);
   static PetscErrorCode jacobian(SNES, Vec u, Mat J, Mat P, void* ctx);
