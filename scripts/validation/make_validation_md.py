@@ -72,10 +72,12 @@ def channel_fine_section(path):
 
 
 CHANNEL_FINE_INTRO = (
-    "The same, `none` and `both` only, on case A at n = 256 (the paper's finest grid) and on "
-    "case B at n = 128 (its `both` at the paper's 768 × 256 was started and stopped: "
-    "`docs/CHANNEL.md` says where and why), made by `SET=fine scripts/validation/channel.sh` "
-    "(the tables of `docs/channel_compare_fine.md`).")
+    "The same on the finer grids: case A at n = 256 (the paper's finest grid) with the side "
+    "walls, the gate and both; case B at n = 128 (`none`, `both`) and at the paper's "
+    "768 × 256 with the side walls and with both (its gate alone is listed as interrupted "
+    "while it has not completed), made by `SET=fine scripts/validation/channel.sh` (the "
+    "tables of `docs/channel_compare_fine.md`). The 2D model (`none`) at these grids is in the "
+    "paper-case tables above.")
 
 
 def channel_lid_section(path):
