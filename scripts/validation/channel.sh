@@ -60,6 +60,7 @@ if [[ "$set_name" == fine ]]; then
     "b_n128|cases/ar2_smooth|--set grid.n=128 --set domain.Lx=2.0 $opts0"
     "a_n256|cases/ar07_rough|--set grid.n=256 $opts0|2"
     "b_n256|cases/ar2_smooth|--set grid.n=256 $opts0|1|side gate both"
+    "b_n256_2m|cases/ar2_smooth|--set grid.n=256 --set domain.Lx=2.0 $opts0|1|none"
   )
 fi
 if [[ "$set_name" == lid ]]; then

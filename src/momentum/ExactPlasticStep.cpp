@@ -26,6 +26,17 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
   GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &D_));
   GF_PETSC(DMCreateGlobalVector(g.dm_ten(), &T_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &CT_));
+  for (Vec* v : {&rhs_, &u_prev_, &u_newton_}) GF_PETSC(DMCreateGlobalVector(g.dm_vel(), v));
+  for (Vec* v : {&S_prev_, &S_newton_}) GF_PETSC(DMCreateGlobalVector(g.dm_ten(), v));
+  GF_PETSC(KSPCreate(g.comm(), &ksp_));
+  GF_PETSC(KSPSetOptionsPrefix(ksp_, "exactpd_"));
+  GF_PETSC(KSPSetType(ksp_, KSPPREONLY));
+  {
+    PC pc2;
+    GF_PETSC(KSPGetPC(ksp_, &pc2));
+    GF_PETSC(PCSetType(pc2, PCLU));
+    if (g.size() > 1) GF_PETSC(PCFactorSetMatSolverType(pc2, MATSOLVERMUMPS));
+  }
   PetscInt n;
   GF_PETSC(VecGetLocalSize(D_, &n));
   GF_PETSC(MatCreateAIJ(g.comm(), n, n, PETSC_DETERMINE, PETSC_DETERMINE, 3, nullptr, 0, nullptr,
@@ -34,6 +45,8 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
 
 ExactPlasticStep::~ExactPlasticStep() {
   SNESDestroy(&snes_);
+  KSPDestroy(&ksp_);
+  for (Vec* v : {&rhs_, &u_prev_, &u_newton_, &S_prev_, &S_newton_}) VecDestroy(v);
   MatDestroy(&J_);
   MatDestroy(&CMB_);
   MatDestroy(&M_);
@@ -228,6 +241,172 @@ ExactStepStats ExactPlasticStep::solve(Mat A, Vec b, const PlasticMatrices& m, V
   st.outer = std::min(st.outer, opt.max_outer);
   GF_PETSC(VecCopy(lambda_, S));
   GF_PETSC(VecDestroy(&F));
+  return st;
+}
+
+
+// The linearisation of S = P(S + c E u) at (u, lambda_) (see solve_newton in the header).
+ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOptions& opt) {
+  const Box& b = g_.box();
+  GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
+  const PetscScalar ***d, ***d0, ***lam, **k, **c;
+  PetscScalar*** t;
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), D_, &d));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), m_->d0, &d0));
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), lambda_, &lam));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), kappa_, &k));
+  GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), c_, &c));
+  GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), T_, &t));
+  PetscInt r0;
+  GF_PETSC(VecGetOwnershipRange(D_, &r0, nullptr));
+  lin_.assign(static_cast<size_t>(b.xm) * b.ym * 5, 0.0);
+  double loc[2] = {0, 0};  // max and sum of squares of |S - P(S + c E u)|
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const size_t cell = static_cast<size_t>((j - b.ys) * b.xm + (i - b.xs));
+      const double kk = k[j][i] > 0 ? k[j][i] : 0.0;
+      double G[2][2] = {{0, 0}, {0, 0}}, s0[2] = {0, 0};
+      if (kk > 0) {
+        const double cc = c[j][i];
+        const double s[2] = {lam[j][i][0], lam[j][i][1]};
+        const double q[2] = {s[0] + cc * 0.5 * (d[j][i][0] - d[j][i][2]), s[1] + cc * d[j][i][1]};
+        const double nq = std::hypot(q[0], q[1]);
+        const double f = nq > 1 ? 1 / nq : 1.0;
+        const double r = std::hypot(s[0] - f * q[0], s[1] - f * q[1]);
+        loc[0] = std::max(loc[0], r);
+        loc[1] += r * r;
+        if (nq <= 1) {  // rigid: E u = 0 in its augmented form, step rigid_factor c
+          G[0][0] = G[1][1] = opt.rigid_factor * cc;
+          s0[0] = s[0];
+          s0[1] = s[1];
+        } else {  // yielded: Newton on S = q / |q|
+          const double n[2] = {q[0] / nq, q[1] / nq};
+          const double gam = cc / std::max(nq - 1, opt.gap_floor);
+          G[0][0] = gam * (1 - n[0] * n[0]);
+          G[0][1] = G[1][0] = -gam * n[0] * n[1];
+          G[1][1] = gam * (1 - n[1] * n[1]);
+          s0[0] = n[0];
+          s0[1] = n[1];
+        }
+      }
+      double* l = &lin_[5 * cell];
+      l[0] = s0[0];
+      l[1] = s0[1];
+      l[2] = G[0][0];
+      l[3] = G[0][1];
+      l[4] = G[1][1];
+      // T = Pi kappa (S0 + G L d0); M = Pi kappa G L with L = [[1/2, 0, -1/2], [0, 1, 0]].
+      const double ld0[2] = {0.5 * (d0[j][i][0] - d0[j][i][2]), d0[j][i][1]};
+      const double tx = kk * (s0[0] + G[0][0] * ld0[0] + G[0][1] * ld0[1]);
+      const double ty = kk * (s0[1] + G[1][0] * ld0[0] + G[1][1] * ld0[1]);
+      t[j][i][0] = tx;
+      t[j][i][1] = ty;
+      t[j][i][2] = -tx;
+      double GL[2][3];
+      for (int a = 0; a < 2; ++a) {
+        GL[a][0] = kk * 0.5 * G[a][0];
+        GL[a][1] = kk * G[a][1];
+        GL[a][2] = -kk * 0.5 * G[a][0];
+      }
+      const PetscInt base = r0 + static_cast<PetscInt>(cell) * 3;
+      const PetscInt idx[3] = {base, base + 1, base + 2};
+      const double vals[9] = {GL[0][0], GL[0][1], GL[0][2], GL[1][0], GL[1][1],
+                              GL[1][2], -GL[0][0], -GL[0][1], -GL[0][2]};
+      GF_PETSC(MatSetValues(M_, 3, idx, 3, idx, vals, INSERT_VALUES));
+    }
+  GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), T_, &t));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), c_, &c));
+  GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), kappa_, &k));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), lambda_, &lam));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), m_->d0, &d0));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), D_, &d));
+  GF_PETSC(MatAssemblyBegin(M_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(MatAssemblyEnd(M_, MAT_FINAL_ASSEMBLY));
+  return {g_.max(loc[0]), std::sqrt(g_.sum(loc[1]))};
+}
+
+void ExactPlasticStep::newton_update(Vec u) {
+  const Box& b = g_.box();
+  GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
+  const PetscScalar*** d;
+  PetscScalar*** lam;
+  GF_PETSC(DMDAVecGetArrayDOFRead(g_.dm_ten(), D_, &d));
+  GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), lambda_, &lam));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const double* l = &lin_[5 * static_cast<size_t>((j - b.ys) * b.xm + (i - b.xs))];
+      const double e0 = 0.5 * (d[j][i][0] - d[j][i][2]), e1 = d[j][i][1];
+      lam[j][i][0] = l[0] + l[2] * e0 + l[3] * e1;
+      lam[j][i][1] = l[1] + l[3] * e0 + l[4] * e1;
+      lam[j][i][2] = -lam[j][i][0];
+    }
+  GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), lambda_, &lam));
+  GF_PETSC(DMDAVecRestoreArrayDOFRead(g_.dm_ten(), D_, &d));
+}
+
+ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrices& m, Vec kappa,
+                                              Vec c, Vec u, Vec S, const ExactStepOptions& opt) {
+  A_ = A;
+  b_ = b;
+  m_ = &m;
+  kappa_ = kappa;
+  c_ = c;
+  GF_PETSC(VecCopy(S, lambda_));
+  MatDestroy(&CMB_);
+  MatDestroy(&J_);
+  ExactStepStats st;
+  Residual res = linearise(u, opt);
+  // The pattern of J = A - C M B with every 3 x 3 block of M full (linearise sets them all).
+  GF_PETSC(MatMatMatMult(m.C, M_, m.B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CMB_));
+  GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
+  GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));
+  GF_PETSC(KSPSetFromOptions(ksp_));
+  for (int it = 0;; ++it) {
+    st.change = res.max;
+    // After a solve the momentum equation holds with the updated S (the linear system is that
+    // equation), so what is left is the projection's residual; before the first solve the
+    // momentum equation is not known to hold.
+    if (it > 0 && res.max <= opt.tol) {
+      st.converged = true;
+      break;
+    }
+    if (it == opt.max_outer) break;
+    if (it > 0) GF_PETSC(MatMatMatMult(m.C, M_, m.B, MAT_REUSE_MATRIX, PETSC_DEFAULT, &CMB_));
+    GF_PETSC(MatZeroEntries(J_));
+    GF_PETSC(MatAXPY(J_, 1.0, A, SUBSET_NONZERO_PATTERN));
+    GF_PETSC(MatAXPY(J_, -1.0, CMB_, SUBSET_NONZERO_PATTERN));
+    GF_PETSC(MatMult(m.C, T_, rhs_));
+    GF_PETSC(VecAYPX(rhs_, 1.0, b));
+    GF_PETSC(KSPSetOperators(ksp_, J_, J_));
+    GF_PETSC(KSPSolve(ksp_, rhs_, u));
+    KSPConvergedReason why;
+    GF_PETSC(KSPGetConvergedReason(ksp_, &why));
+    if (why < 0)
+      throw RunError("exact plastic step: the Newton system's solve failed (" +
+                     std::string(KSPConvergedReasons[why]) + ") in iteration " +
+                     std::to_string(it + 1) + "; try -exactpd_ksp_monitor to see it");
+    newton_update(u);
+    st.outer = st.newton = it + 1;
+    const Residual prev = res;
+    res = linearise(u, opt);
+    if (it > 0) {
+      // Backtracking on the 2-norm of the projection's residual, between the last iterate and
+      // the Newton point: both satisfy the momentum equation, which is linear in (u, S), so
+      // every point between them does too.
+      GF_PETSC(VecCopy(u, u_newton_));
+      GF_PETSC(VecCopy(lambda_, S_newton_));
+      for (double tau = 0.5; res.l2 >= (1 - 1e-4 * 2 * tau) * prev.l2 && tau > 1.0 / 1024;
+           tau *= 0.5) {
+        GF_PETSC(VecAXPBYPCZ(u, 1 - tau, tau, 0.0, u_prev_, u_newton_));
+        GF_PETSC(VecAXPBYPCZ(lambda_, 1 - tau, tau, 0.0, S_prev_, S_newton_));
+        res = linearise(u, opt);
+        ++st.backtracks;
+      }
+    }
+    GF_PETSC(VecCopy(u, u_prev_));
+    GF_PETSC(VecCopy(lambda_, S_prev_));
+  }
+  GF_PETSC(VecCopy(lambda_, S));
   return st;
 }
 

@@ -27,8 +27,9 @@
 // 1.1e-2 and 2.7e-3 at 16 and 32 cells across (second order), independent of c to 3e-11; but
 // the outer loop is slow where the flow yields (52 and 130 updates at c factor 10; at 64 cells
 // not converged in 200 updates and 4084 Newton iterations, error 6.8e-4), and at c factor 100
-// the Newton line search on |F| fails on the held plug. Not robust enough for the stepper: the
-// primal-dual Newton step of docs/RHEOLOGY.md (item 3) is the next candidate for the inner solve.
+// the Newton line search on |F| fails on the held plug. Not robust enough for the stepper:
+// solve_newton below (u and S updated together) converges in 2-6 iterations on the same
+// problems.
 //
 // The pressure is not in this problem (the projection of eq. 32 follows it), so a zone held
 // rigid here can still be deformed by the pressure correction (docs/RHEOLOGY.md, the Coulomb
@@ -37,6 +38,8 @@
 // for.
 #include <petscsnes.h>
 
+#include <vector>
+
 #include "grid/Grid.hpp"
 #include "momentum/PlasticMatrices.hpp"
 
@@ -44,13 +47,26 @@ namespace gf::momentum {
 
 struct ExactStepOptions {
   double tol = 1e-10;   // largest change of the multiplier in a cell, dimensionless
-  int max_outer = 200;  // multiplier updates
+  int max_outer = 200;  // multiplier updates (solve) or Newton iterations (solve_newton)
   double inner_rtol = 1e-12;  // Newton: relative reduction of |F|
+  // solve_newton: the floor of |q| - 1 in a yielded cell's tangential stiffness
+  // gamma = c / max(|q| - 1, gap_floor) (dimensionless; any gamma >= 0 has the exact fixed
+  // point, the floor only bounds the stiffness of a cell at the yield limit).
+  double gap_floor = 1e-3;
+  // solve_newton: the step length of the rigid cells' augmented update, in units of c
+  // (dimensionless; the fixed point does not depend on it). Large: the update is close to
+  // Newton's E u = 0 and converges in fewer iterations; the direct solve's round-off grows with
+  // it. Measured in the unit test's channel (16-64 cells, c factors 1-100): at 1e3, 3-11
+  // iterations, c factor 3 against 30 differ by 2.4e-10 of max |u|; at 1e4, 2-6 and 1.0e-8;
+  // at 1e6, 2-4 and 6.6e-7; at 1e7 the round-off shows in the profile; at 1, the cells' step
+  // is the multipliers' and the iteration cycles.
+  double rigid_factor = 1e4;
 };
 
 struct ExactStepStats {
   int outer = 0;          // multiplier updates
   int newton = 0;         // Newton iterations, all inner solves
+  int backtracks = 0;     // solve_newton: halvings of the step in the line search
   double change = 0;      // the last multiplier change (max over cells)
   bool converged = false;
 };
@@ -69,6 +85,35 @@ class ExactPlasticStep {
   ExactStepStats solve(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c, Vec u, Vec S,
                        const ExactStepOptions& opt = {});
 
+  // The same problem by a primal-dual semismooth Newton method: u and S are updated together,
+  // one linear solve per iteration (stats: outer = newton = the iterations). With q_k = S_k +
+  // c E u_k in a cell, the linearisation of S = P(S + c E u) at (u_k, S_k) gives
+  //   yielded (|q_k| > 1):  S_{k+1} = n_k + gamma_k (I - n_k n_k^T) E u_{k+1},
+  //                         n_k = q_k / |q_k|, gamma_k = c / (|q_k| - 1)  (exact Newton),
+  //   rigid   (|q_k| <= 1): E u_{k+1} = 0, taken as S_{k+1} = S_k + c_R E u_{k+1} with
+  //                         c_R = rigid_factor c: the saddle point of Newton's step with a
+  //                         (2,2) block -I/c_R, which is not singular where a rigid zone's
+  //                         multiplier is not unique, and is Newton's step as c_R -> infinity,
+  // so that u_{k+1} solves (A - C Pi kappa G_k L B) u = b + C Pi kappa (S0_k + G_k L d0) with
+  // G_k, S0_k the cell's (gamma_k (I - n n^T), n_k) or (c_R I, S_k). Every fixed point of this
+  // iteration is the exact solution, whatever gamma >= 0 and c_R > 0: E u = 0 in the rigid
+  // cells, and in the yielded ones S = n, which makes S parallel to E u. From the second
+  // iteration on, the step is halved until the 2-norm of |S - P(S + c E u)| over the cells
+  // decreases (all the points between two iterates satisfy the momentum equation, linear in
+  // (u, S)). Stops when max |S - P(S + c E u)| <= tol over the cells (the criterion of
+  // solve()). Linear solves: KSP prefix -exactpd_, default a direct solve (LU; MUMPS on more
+  // than one rank).
+  //
+  // Measured (test_exact_plastic_step_mpi.cpp, the steady channel, c factors 1 to 100, 16 to
+  // 64 cells across, rigid_factor 1e4): 2 Newton iterations for the plug (|u| 1.2e-12 m/s),
+  // 4-6 for the Bingham Poiseuille profile at every grid (second order: 1.09e-2, 2.71e-3,
+  // 6.78e-4, and 1.70e-4 at 128 cells), no backtracking; where the method of multipliers takes
+  // 33 to 130 updates, and does not converge in 200 at 64 cells. With c_R = c the rigid cells' step is the multipliers' (an
+  // Uzawa step) and the iteration cycles at c factor 10 (residual 2: a yielded cell's
+  // direction flips); the line search then makes it converge, but linearly (ratio 0.9).
+  ExactStepStats solve_newton(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c, Vec u,
+                              Vec S, const ExactStepOptions& opt = {});
+
  private:
   const Grid& g_;
   SNES snes_ = nullptr;
@@ -78,6 +123,20 @@ class ExactPlasticStep {
   Vec b_ = nullptr, kappa_ = nullptr, c_ = nullptr, lambda_ = nullptr, D_ = nullptr,
       T_ = nullptr, CT_ = nullptr;  // CT_: C T of the residual (dm_vel)
   void plastic_stress(Vec u, Vec T, bool jacobian);
+  // solve_newton: the linear solver, each cell's (S0x, S0y, G00, G01, G11) of the last
+  // linearisation, the right-hand side, the last iterate and the Newton point.
+  KSP ksp_ = nullptr;
+  std::vector<double> lin_;
+  Vec rhs_ = nullptr, u_prev_ = nullptr, u_newton_ = nullptr, S_prev_ = nullptr,
+      S_newton_ = nullptr;
+  struct Residual {
+    double max, l2;  // of |lambda - P(lambda + c E u)| over the cells
+  };
+  // Linearises at (u, lambda_): M_ = Pi kappa G L, T_ = Pi kappa (S0 + G L d0), lin_; returns
+  // the residual there. Collective.
+  Residual linearise(Vec u, const ExactStepOptions& opt);
+  // lambda_ = S0 + G L (B u + d0) from lin_.
+  void newton_update(Vec u);
   static PetscErrorCode residual(SNES, Vec u, Vec F, void* ctx);
   static PetscErrorCode jacobian(SNES, Vec u, Mat J, Mat P, void* ctx);
 };

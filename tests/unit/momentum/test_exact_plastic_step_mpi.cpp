@@ -45,7 +45,8 @@ struct Result {
 Grid channel(PetscInt ny) { return Grid(PETSC_COMM_WORLD, 8, ny, 8 * kH / ny, kH, true); }
 
 // One steady step on g; u_out (optional, a dm_vel Vec of g) gets the velocity.
-Result steady(const Grid& g, double kappa, double c_factor, Vec u_out = nullptr) {
+Result steady(const Grid& g, double kappa, double c_factor, Vec u_out = nullptr,
+              bool newton = false, const gf::momentum::ExactStepOptions& opt = {}) {
   gf::Boundaries bc;
   bc.bottom.type = gf::WallType::NoSlip;
   bc.top.type = gf::WallType::NoSlip;
@@ -77,7 +78,8 @@ Result steady(const Grid& g, double kappa, double c_factor, Vec u_out = nullptr)
   VecSet(S, 0.0);
   gf::momentum::ExactPlasticStep step(g);
   Result r;
-  r.st = step.solve(pred.matrix(), b, m, kap, c, u, S);
+  r.st = newton ? step.solve_newton(pred.matrix(), b, m, kap, c, u, S, opt)
+                : step.solve(pred.matrix(), b, m, kap, c, u, S, opt);
   const gf::Box& bx = g.box();
   const gf::Vel** a;
   DMDAVecGetArrayRead(g.dm_vel(), u, &a);
@@ -151,4 +153,70 @@ TEST(ExactPlasticStep, BinghamPoiseuilleProfile) {
   EXPECT_LT(d / n, 1e-8);
   VecDestroy(&u2);
   VecDestroy(&u1);
+}
+
+// The primal-dual semismooth Newton method (solve_newton) on the same problems, and where the
+// method of multipliers is slow or fails: 64 cells across, c factors 1 to 100.
+TEST(ExactPlasticStepNewton, PlugBelowTheThresholdDoesNotMove) {
+  const Grid g = channel(32);
+  for (double cf : {1.0, 100.0}) {
+    const Result r = steady(g, 0.75 * kF * kH, cf, nullptr, true);
+    PetscPrintf(PETSC_COMM_WORLD,
+                "Newton, kappa = 1.5 f H/2, c factor %g: max |u| %.1e, max |v| %.1e m/s (%d "
+                "iterations, %d halvings, residual %.1e)\n",
+                cf, r.umax, r.vmax, r.st.newton, r.st.backtracks, r.st.change);
+    EXPECT_TRUE(r.st.converged);
+    EXPECT_LE(r.st.newton, 4);
+    EXPECT_LT(r.umax, 1e-9);
+    EXPECT_LT(r.vmax, 1e-9);
+  }
+}
+
+TEST(ExactPlasticStepNewton, BinghamPoiseuilleProfileInAFewIterations) {
+  const double kappa = 0.2 * kF * kH;
+  const PetscInt grids[3] = {16, 32, 64};
+  double err[3];
+  for (int k = 0; k < 3; ++k) {
+    const Grid g = channel(grids[k]);
+    for (double cf : {1.0, 10.0, 100.0}) {
+      const Result r = steady(g, kappa, cf, nullptr, true);
+      PetscPrintf(PETSC_COMM_WORLD,
+                  "Newton, ny = %d, c factor %g: max |u - exact| / max exact = %.3e, max |v| "
+                  "%.1e (%d iterations, %d halvings)\n",
+                  static_cast<int>(grids[k]), cf, r.err, r.vmax, r.st.newton, r.st.backtracks);
+      EXPECT_TRUE(r.st.converged);
+      EXPECT_LE(r.st.newton, 6);
+      if (cf == 10.0) err[k] = r.err;
+    }
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double order = std::log2(err[k] / err[k + 1]);
+    PetscPrintf(PETSC_COMM_WORLD, "Newton: observed order %.2f (ny %d to %d)\n", order,
+                static_cast<int>(grids[k]), static_cast<int>(grids[k + 1]));
+    EXPECT_GT(order, 1.8);
+  }
+  EXPECT_LT(err[2], 1e-3);
+  // The answer does not depend on c (a factor 10) or on the rigid cells' step (a factor 100),
+  // to the round-off of the direct solves (rigid_factor in ExactPlasticStep.hpp).
+  const Grid g = channel(32);
+  Vec u1, u2, u3;
+  for (Vec* v : {&u1, &u2, &u3}) DMCreateGlobalVector(g.dm_vel(), v);
+  steady(g, kappa, 3.0, u1, true);
+  steady(g, kappa, 30.0, u2, true);
+  gf::momentum::ExactStepOptions o;
+  o.rigid_factor = 1e6;
+  steady(g, kappa, 3.0, u3, true, o);
+  double n, d2, d3;
+  VecNorm(u1, NORM_INFINITY, &n);
+  VecAXPY(u2, -1.0, u1);
+  VecAXPY(u3, -1.0, u1);
+  VecNorm(u2, NORM_INFINITY, &d2);
+  VecNorm(u3, NORM_INFINITY, &d3);
+  PetscPrintf(PETSC_COMM_WORLD,
+              "Newton: c factor 3 against 30: max |du| / max |u| = %.1e; rigid step 1e4 c "
+              "against 1e6 c: %.1e\n",
+              d2 / n, d3 / n);
+  EXPECT_LT(d2 / n, 1e-7);
+  EXPECT_LT(d3 / n, 1e-7);
+  for (Vec* v : {&u1, &u2, &u3}) VecDestroy(v);
 }
