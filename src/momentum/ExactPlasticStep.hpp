@@ -38,6 +38,7 @@
 // for.
 #include <petscsnes.h>
 
+#include <functional>
 #include <vector>
 
 #include "grid/Grid.hpp"
@@ -61,12 +62,37 @@ struct ExactStepOptions {
   // at 1e6, 2-4 and 6.6e-7; at 1e7 the round-off shows in the profile; at 1, the cells' step
   // is the multipliers' and the iteration cycles.
   double rigid_factor = 1e4;
+  // solve_newton with NewtonWalls::refresh: the largest change of kappa_b between the last two
+  // iterates, relative to its largest value, at which the iteration stops.
+  double kappa_b_tol = 1e-5;
+  // The same for the sticking Coulomb wall faces (a diagonal term: no conditioning cost). On a
+  // block held by its wall friction the distribution of the wall traction is not unique, the
+  // multipliers drift along it, and the residual left is that drift over this factor: at 1e4
+  // the iteration stalled at 3e-7, at 1e6 the residual moves to the rigid cells (1e-8).
+  double wall_rigid_factor = 1e6;
+};
+
+// The Coulomb walls in solve_newton (boundary/Coulomb.hpp, eqs. 22 and 30 with theta = 0), in
+// the wall storage of dm_vel Vecs: on a wall face with kappa_b > 0 the traction -kappa_b s_t / h
+// acts on the face's velocity u_t (Predictor::add_plastic; h the spacing normal to the wall)
+// and s_t = P_b(s_t + c_b u_t). Linearised like the cells: sticking (|q| <= 1), s_t = s_t,k +
+// rigid_factor c_b u_t; sliding, s_t = sign(q_k) (P_b' = 0 there). Faces with kappa_b = 0 get
+// s_t = 0. The moving gate is not covered (its slip is relative to the plate).
+struct NewtonWalls {
+  Vec kappa_b = nullptr;  // Pa; refreshed by refresh() at every linearisation
+  Vec c_num = nullptr;    // Pa s/m: c_b kappa_b (c_b = c_num / kappa_b, s/m)
+  Vec s_wall = nullptr;   // in: the start; out: the solution
+  // kappa_b from the strain rate D = B u + d0 and S (both dm_ten); empty: fixed. Called at
+  // the start and each time the iteration has converged with kappa_b fixed, until kappa_b
+  // changes by less than tol of its largest value.
+  std::function<void(Vec D, Vec S, Vec kappa_b)> refresh;
 };
 
 struct ExactStepStats {
   int outer = 0;          // multiplier updates
   int newton = 0;         // Newton iterations, all inner solves
   int backtracks = 0;     // solve_newton: halvings of the step in the line search
+  int refreshes = 0;      // solve_newton: kappa_b refreshed after a converged iteration
   double change = 0;      // the last multiplier change (max over cells)
   bool converged = false;
 };
@@ -91,7 +117,7 @@ class ExactPlasticStep {
   //   yielded (|q_k| > 1):  S_{k+1} = n_k + gamma_k (I - n_k n_k^T) E u_{k+1},
   //                         n_k = q_k / |q_k|, gamma_k = c / (|q_k| - 1)  (exact Newton),
   //   rigid   (|q_k| <= 1): E u_{k+1} = 0, taken as S_{k+1} = S_k + c_R E u_{k+1} with
-  //                         c_R = rigid_factor c: the saddle point of Newton's step with a
+  //                         c_R = rigid_factor c (or the cell's c_rigid): the saddle point of Newton's step with a
   //                         (2,2) block -I/c_R, which is not singular where a rigid zone's
   //                         multiplier is not unique, and is Newton's step as c_R -> infinity,
   // so that u_{k+1} solves (A - C Pi kappa G_k L B) u = b + C Pi kappa (S0_k + G_k L d0) with
@@ -101,8 +127,8 @@ class ExactPlasticStep {
   // iteration on, the step is halved until the 2-norm of |S - P(S + c E u)| over the cells
   // decreases (all the points between two iterates satisfy the momentum equation, linear in
   // (u, S)). Stops when max |S - P(S + c E u)| <= tol over the cells (the criterion of
-  // solve()). Linear solves: KSP prefix -exactpd_, default a direct solve (LU; MUMPS on more
-  // than one rank).
+  // solve()). Linear solves: KSP prefix -exactpd_, default a direct solve (MUMPS LU);
+  // -exactpd_monitor prints the residual of every iteration.
   //
   // Measured (test_exact_plastic_step_mpi.cpp, the steady channel, c factors 1 to 100, 16 to
   // 64 cells across, rigid_factor 1e4): 2 Newton iterations for the plug (|u| 1.2e-12 m/s),
@@ -112,7 +138,8 @@ class ExactPlasticStep {
   // Uzawa step) and the iteration cycles at c factor 10 (residual 2: a yielded cell's
   // direction flips); the line search then makes it converge, but linearly (ratio 0.9).
   ExactStepStats solve_newton(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c, Vec u,
-                              Vec S, const ExactStepOptions& opt = {});
+                              Vec S, const ExactStepOptions& opt = {},
+                              const NewtonWalls* walls = nullptr, Vec c_rigid = nullptr);
 
  private:
   const Grid& g_;
@@ -129,6 +156,21 @@ class ExactPlasticStep {
   std::vector<double> lin_;
   Vec rhs_ = nullptr, u_prev_ = nullptr, u_newton_ = nullptr, S_prev_ = nullptr,
       S_newton_ = nullptr;
+  // The walls (null: none): per face (s0, g) of the last linearisation (two per dm_vel local
+  // entry), the diagonal kappa_b g / h and the right-hand side -kappa_b s0 / h they add, and
+  // the line search's copies of s_t.
+  const NewtonWalls* walls_ = nullptr;
+  Vec c_rigid_ = nullptr;  // dm_cell, s: the rigid cells' step (null: rigid_factor c)
+  std::vector<double> linw_;
+  Vec wdiag_ = nullptr, wrhs_ = nullptr, sw_prev_ = nullptr, sw_newton_ = nullptr,
+      kb_old_ = nullptr;
+  // kappa_b from (u, lambda_); returns max |change| / max kappa_b.
+  double refresh_kappa_b(Vec u);
+  // Calls f(i, j, q, h) for the local wall faces of the Coulomb storage: q = 0 (u, bottom and
+  // top rows) or 1 (v, left and right columns), h the spacing normal to the wall.
+  template <class F> void for_wall_faces(F&& f) const;
+  double linearise_walls(Vec u, const ExactStepOptions& opt, double& l2);
+  void newton_update_walls(Vec u);
   struct Residual {
     double max, l2;  // of |lambda - P(lambda + c E u)| over the cells
   };

@@ -68,6 +68,9 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.fp.anderson_depth = rh.anderson_depth;
   p.fp.anderson_reset_ratio = rh.anderson_reset_ratio;
   p.fp.monitor = rh.fp_monitor;
+  p.newton = rh.newton;
+  p.newton_opt.tol = rh.newton_tol;
+  p.newton_opt.max_iter = rh.newton_max_iter;
   p.fp.local_margin = c.solver.viscous_local_margin;
   p.yield_support = rh.yield_on_mass && c.levelset.enabled ? p.eps : 0.0;
   p.interface_method = c.interface.method;
@@ -128,6 +131,7 @@ RunConfig run_from_case(const CaseConfig& c, const std::string& out_dir) {
   r.checkpoint_wall_s = c.output.checkpoint_wall_s;
   r.volume_warn_pct = c.output.volume_warn_pct;
   r.fp_fail_change = c.rheology.fp_fail_change;
+  r.newton = c.rheology.newton;
   r.output_interval = c.output.interval;
   r.vtk_interval = c.output.vtk_interval;
   r.progress_interval = c.output.progress_interval;

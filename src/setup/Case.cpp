@@ -102,6 +102,9 @@ CaseConfig fill(const Params& p) {
   rh.anderson_depth = static_cast<int>(p.get_int("rheology.anderson_depth"));
   rh.anderson_reset_ratio = p.get_real("rheology.anderson_reset_ratio");
   rh.fp_monitor = p.get_bool("rheology.fp_monitor");
+  rh.newton = p.get_string("rheology.solver") == "newton";
+  rh.newton_tol = p.get_real("rheology.newton_tol");
+  rh.newton_max_iter = static_cast<int>(p.get_int("rheology.newton_max_iter"));
 
   c.levelset.enabled = p.get_bool("levelset.enabled");
   c.levelset.eps_cells = p.get_real("levelset.eps_cells");

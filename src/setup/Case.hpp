@@ -129,6 +129,9 @@ struct CaseConfig {
     int anderson_depth = 0;       // -, Anderson acceleration of the fixed point (0 = Picard)
     double anderson_reset_ratio = 0;  // -, the history is dropped when the change grows more
     bool fp_monitor = false;      // a log line per fixed-point iteration
+    bool newton = false;          // rheology.solver = "newton": theta = 0, solved exactly
+    double newton_tol = 0;        // -, on max |S - P(S + r kappa D)| and the walls'
+    int newton_max_iter = 0;
     // mu_s = tan(alpha).
     double tan_alpha() const { return std::tan(friction_angle_deg * std::numbers::pi / 180); }
     bool operator==(const Rheology&) const = default;

@@ -425,6 +425,16 @@ void CaseChecks::walls() {
       if (p.is_set(gt + k))
         c.warnings.push_back(gt + k + " is set but " + gt + "x = 0: there is no gate, ignored");
   }
+  // The exact solver does not cover these yet: say so rather than drop the physics.
+  if (ok({"rheology.solver", sw + "width", gt + "x", "rheology.plastic_grid"}) && c.rheology.newton) {
+    const std::string what = c.side_walls.width > 0 ? sw + "width = " + m(c.side_walls.width)
+                             : c.gate.x > 0         ? gt + "x = " + m(c.gate.x)
+                             : c.rheology.node_copy ? std::string("rheology.plastic_grid = \"cell_node\"")
+                                                    : std::string();
+    if (!what.empty())
+      errors.add(p.where("rheology.solver") + ": rheology.solver = \"newton\" is not available with " +
+                 what + " yet: use rheology.solver = \"fixed_point\" (the default)");
+  }
   if (ok({sw + "width"}) && c.side_walls.width == 0)
     for (const char* k : {"earth_pressure", "eta_b", "normal_stress"})
       if (p.is_set(sw + k))
@@ -496,6 +506,14 @@ void CaseChecks::rheology() {
                               "rheology.plastic_grid", "rheology.yield_support",
                               "rheology.fp_max_iter"})
           unused_keys.push_back({k, y + " (no plastic fixed point)"});
+      if (rh.newton)
+        for (const char* k : {"rheology.theta_per_dt", "rheology.fp_tol", "rheology.fp_tol_u",
+                              "rheology.fp_max_iter", "rheology.anderson_depth",
+                              "rheology.anderson_reset_ratio", "rheology.fp_monitor"})
+          unused_keys.push_back({k, "rheology.solver = newton (theta = 0, no fixed point)"});
+      else
+        for (const char* k : {"rheology.newton_tol", "rheology.newton_max_iter"})
+          unused_keys.push_back({k, "rheology.solver = fixed_point"});
       for (const auto& [k, why] : unused_keys)
         if (p.is_set(k)) c.warnings.push_back(k + " is set but " + why + " does not use it");
     }

@@ -95,7 +95,12 @@ std::string rheology_text(const CaseConfig& c, double dt) {
        << "] Pa s\n";
   else
     os << "constant: eta = phase.granular.eta = " << g4(c.granular.eta) << " Pa s\n";
-  if (rh.yield != Yield::None) {
+  if (rh.yield != Yield::None && rh.newton) {
+    os << "           plastic step (eq. 31) solved exactly, theta = 0: semismooth Newton to a "
+          "residual < "
+       << g4(rh.newton_tol) << ", at most " << rh.newton_max_iter << " iterations; r_factor = "
+       << g4(rh.r_factor) << " (does not change the answer)\n";
+  } else if (rh.yield != Yield::None) {
     const double theta = rh.theta_per_dt * dt;
     os << "           fixed point (eq. 31): theta = theta_per_dt x first dt = "
        << g4(rh.theta_per_dt) << " /s x " << g4(dt)

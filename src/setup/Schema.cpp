@@ -136,6 +136,20 @@ void declare_physics(Params& p) {
              "that a larger r makes stiffer; the stresses there move with it (case A's peak "
              "granular pressure by up to 6 %, docs/VALIDATION.md \"Augmentation r\"). 1 "
              "oscillates on case A, 0.5 converges.");
+  p.add_enum("rheology.solver", "fixed_point", kPlasticSolvers,
+             "How each step's plastic problem (eq. 31) is solved: fixed_point = the paper's "
+             "iteration (relaxation theta = theta_per_dt dt, Anderson acceleration, stops at "
+             "fp_tol or fp_max_iter); newton = exactly, with theta = 0, by a primal-dual "
+             "semismooth Newton method (one direct solve per iteration, to newton_tol; "
+             "momentum/ExactPlasticStep.hpp): the rigid zones are rigid and the step does not "
+             "depend on r_factor. Newton is not yet available with plastic_grid = cell_node, "
+             "the side walls or the gate.");
+  p.add_real("rheology.newton_tol", "", 1e-6, Range::gt(0),
+             "rheology.solver = newton: stop when max |S - P(S + r kappa D)| over the cells and "
+             "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this.");
+  p.add_int("rheology.newton_max_iter", "", 100, closed(1, 1e6),
+            "rheology.solver = newton: most Newton iterations per time step (a step that "
+            "reaches it is counted as capped, like the fixed point's).");
   p.add_enum("rheology.plastic_grid", "cell", kPlasticGrids,
              "Where the plastic tensor S lives: cell = at the cell centres only, the shear rate "
              "there the mean of the four node shear rates (the paper, section 3.4); cell_node = "

@@ -587,7 +587,14 @@ double Simulation::advance(double dt) {
            " s): the run blew up; try a smaller time step (time.cfl, time.dt_max, or time.dt "
            "with time.dt_mode = fixed)");
   }
-  if (st.fp_capped && st.fp_change > rc_.fp_fail_change)
+  if (st.fp_capped && st.fp_change > rc_.fp_fail_change && rc_.newton)
+    fail("the exact plastic step (rheology.solver = \"newton\") did not converge: after "
+         "rheology.newton_max_iter = " + std::to_string(st.fp_iters) + " iterations its "
+         "residual is " + num(st.fp_change) + " (above rheology.fp_fail_change = " +
+         num(rc_.fp_fail_change) + "), at " + when() + " (dt = " + num(dt) +
+         " s): try a smaller time step, or rheology.solver = \"fixed_point\"; "
+         "--set \"solver.petsc_options=-exactpd_monitor\" logs every iteration");
+  if (st.fp_capped && st.fp_change > rc_.fp_fail_change && !rc_.newton)
     fail("the fixed point of eq. 31 did not converge: after rheology.fp_max_iter = " +
          std::to_string(st.fp_iters) + " iterations its change is " + num(st.fp_change) +
          " (above rheology.fp_fail_change = " + num(rc_.fp_fail_change) + "; a sign flip of S "

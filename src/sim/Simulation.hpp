@@ -65,6 +65,7 @@ struct RunConfig {
   double checkpoint_wall_s = 0;             // s of wall clock, 0 = none
   double volume_warn_pct = 1.0;  // %: |granular volume change| above this counts as a warning
   double fp_fail_change = 1.0;   // -: a fixed point at its cap with a larger last change fails
+  bool newton = false;           // rheology.solver = "newton" (for the messages)
   bool stress_equilibrium = false;  // initial.stress = "equilibrium" (Stepper::equilibrate)
   int stress_max_steps = 1000;
   double stress_tol = 1e-7;  // m/s

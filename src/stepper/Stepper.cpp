@@ -39,6 +39,9 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
   const bool plastic = cfg_.rheo.active() || predictor_->walls().active() || side.active();
   if (plastic)
     fixed_point_ = std::make_unique<momentum::FixedPoint>(g, *predictor_, cfg_.rheo, cfg_.fp);
+  if (plastic && cfg_.newton)
+    newton_ = std::make_unique<momentum::NewtonPlastic>(g, *predictor_, cfg_.rheo,
+                                                        cfg_.newton_opt);
   for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_, &rho_r_, &eta_r_, &support_, &granular_,
                  &eta_node_})
     GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
@@ -171,8 +174,10 @@ void Stepper::predict(State& s, double a0dt, double dt, StepStats& st) {
   }
   const double theta = std::min(0.5, cfg_.rheo.theta_per_dt * dt);
   const momentum::PlasticInputs in{kappa_, kappa_b_, rho_r_, eta_r_, granular_, kappa_side_};
+  // rheology.solver = "newton": the step's plastic problem with theta = 0, solved exactly.
   const momentum::FixedPointStats r =
-      fixed_point_->solve(s, in, rhs0_, u_tilde_, a0dt, theta, s.step + 1);
+      newton_ ? newton_->solve(s, in, rhs0_, u_tilde_, a0dt)
+              : fixed_point_->solve(s, in, rhs0_, u_tilde_, a0dt, theta, s.step + 1);
   st.visc_its = r.visc_its;
   st.visc_polish_its = r.visc_polish_its;
   st.fp_iters = r.iters;

@@ -19,6 +19,7 @@
 #include "grid/Grid.hpp"
 #include "interface/Interface.hpp"
 #include "momentum/FixedPoint.hpp"
+#include "momentum/NewtonPlastic.hpp"
 #include "momentum/Momentum.hpp"
 #include "rheology/Rheology.hpp"
 #include "stepper/TimeStepper.hpp"
@@ -40,6 +41,8 @@ struct PhysicsConfig {
   bool initial_pressure_hydrostatic = false;  // initial.pressure = "hydrostatic"
   rheology::Params rheo;                       // yield stress, viscosity law, fixed point
   momentum::FixedPointOptions fp;              // acceleration, monitor, local solves
+  bool newton = false;                         // rheology.solver = "newton"
+  momentum::NewtonOptions newton_opt;          // its tolerance and iteration cap
   // m: the yield stress and the Coulomb wall friction act where phi < yield_support (0: the
   // granular phase, the paper; eps: wherever eq. 25 gives granular mass,
   // rheology.yield_support = "mass").
@@ -85,6 +88,7 @@ class Stepper : public TimeStepper {
   std::unique_ptr<momentum::Predictor> predictor_;
   std::unique_ptr<projection::Projector> projector_;
   std::unique_ptr<momentum::FixedPoint> fixed_point_;  // a yield stress or wall friction
+  std::unique_ptr<momentum::NewtonPlastic> newton_;    // ... solved by Newton (rheology.solver)
   std::unique_ptr<boundary::Gate> gate_;  // boundary.gate (null: none)
   bool gate_hold_ = false;                // equilibrate(): the gate stays where it is at t = 0
   double assembled_a0dt_ = -1;  // a0/dt of the assembled viscous matrix, 1/s

@@ -1,0 +1,103 @@
+#include "momentum/NewtonPlastic.hpp"
+
+#include <algorithm>
+
+#include "core/Error.hpp"
+#include "core/Profile.hpp"
+
+namespace gf::momentum {
+
+namespace {
+constexpr double kRigidFactor = 1e4;  // ExactStepOptions::rigid_factor, on the cell's own scale
+}  // namespace
+
+NewtonPlastic::NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Params& rheo,
+                             const NewtonOptions& opt)
+    : g_(g), pred_(pred), rheo_(rheo), opt_(opt), step_(g) {
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_rigid_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &c_num_));
+}
+
+NewtonPlastic::~NewtonPlastic() {
+  VecDestroy(&c_);
+  VecDestroy(&c_rigid_);
+  VecDestroy(&c_num_);
+}
+
+FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u_tilde,
+                                     double a0dt) {
+  const Box& b = g_.box();
+  {
+    prof::Scope ps(prof::Assemble);
+    assemble_plastic_matrices(g_, pred_, s.eta, m_);
+  }
+  prof::Scope ps(prof::Plastic);
+  // c = r kappa per cell (rheology::update_plastic) and c_b kappa_b = r_factor (rho a0 h / dt +
+  // 2 eta / h) per wall face (boundary::CoulombWalls::update).
+  {
+    const PetscScalar **k, **rr, **er, **rho, **eta;
+    PetscScalar **c, **cr;
+    Vel** cn;
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), c_rigid_, &cr));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), in.kappa, &k));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), in.rho_r, &rr));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), in.eta_r, &er));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.rho, &rho));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.eta, &eta));
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), c_, &c));
+    GF_PETSC(DMDAVecGetArray(g_.dm_vel(), c_num_, &cn));
+    const double h2 = std::min(b.hx, b.hy) * std::min(b.hx, b.hy);
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        c[j][i] = rheology::r_local(rheo_, k[j][i], er[j][i], rr[j][i] * a0dt * h2) *
+                  std::max(k[j][i], 0.0);
+        // The rigid cells' step: c_R kappa = 1e4 (2 eta + rho a0 h^2 / dt) with the cell's own
+        // rho and eta. The fixed point's r takes the lightest neighbour's (an interface cell's
+        // r from the air's: 1000 times smaller), which there would make the rigid cells' update
+        // an Uzawa step too short to converge fast (measured on the Coulomb block: a linear tail
+        // at a ratio 0.75 per iteration).
+        cr[j][i] = k[j][i] > 0 ? kRigidFactor * (2.0 * eta[j][i] + rho[j][i] * a0dt * h2) / k[j][i]
+                               : 0.0;
+        cn[j][i].u = rheo_.r_factor * (rho[j][i] * a0dt * b.hy + 2.0 * eta[j][i] / b.hy);
+        cn[j][i].v = rheo_.r_factor * (rho[j][i] * a0dt * b.hx + 2.0 * eta[j][i] / b.hx);
+      }
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), c_num_, &cn));
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), c_, &c));
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), c_rigid_, &cr));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.eta, &eta));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.rho, &rho));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), in.eta_r, &er));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), in.rho_r, &rr));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), in.kappa, &k));
+  }
+  boundary::CoulombWalls& walls = pred_.walls();
+  NewtonWalls w;
+  const bool wall = walls.active();
+  if (wall) {
+    walls.cache_inputs(s.p, in.kappa, s.eta);
+    w.kappa_b = in.kappa_b;
+    w.c_num = c_num_;
+    w.s_wall = s.s_wall;
+    w.refresh = [&](Vec D, Vec S, Vec kb) { walls.yield(s.p, S, in.kappa, D, s.eta, kb); };
+  }
+  ExactStepOptions o;
+  o.tol = opt_.tol;
+  o.max_outer = opt_.max_iter;
+  ExactStepStats r;
+  try {
+    r = step_.solve_newton(pred_.matrix(), rhs0, m_, in.kappa, c_, u_tilde, s.S, o,
+                           wall ? &w : nullptr, c_rigid_);
+  } catch (...) {
+    walls.clear_cache();
+    throw;
+  }
+  walls.clear_cache();
+  FixedPointStats st;
+  st.iters = r.newton;
+  st.change = r.change;
+  st.converged = r.converged;
+  return st;
+}
+
+}  // namespace gf::momentum

@@ -1,0 +1,56 @@
+#pragma once
+// The prediction u~ of eq. 31 with a yield stress or Coulomb walls, solved exactly with
+// theta = 0 (rheology.solver = "newton", issue 19): the step's plastic problem
+//   A u~ = rhs0 + div(kappa S) - kappa_b s_t,   S = P(S + c E u~),   s_t = P_b(s_t + c_b u_t)
+// with kappa and the operator A frozen for the step and kappa_b = tan(alpha_b) (-T_n)^+ (eq. 22)
+// refreshed from the current D(u~) and S at every iteration (as the fixed point does), by the
+// primal-dual semismooth Newton method of ExactPlasticStep::solve_newton (one direct solve per
+// iteration). The plastic matrices B, C are assembled once per step (the phase on the Coulomb
+// walls changes). c = r kappa and c_b = r_b kappa_b are the fixed point's augmentations
+// (rheology.r_factor); the converged step does not depend on them (theta = 0: the rigid zones
+// are rigid, not elastic). Not with the node copy of S, the side walls or the gate.
+#include <petscvec.h>
+
+#include "fields/Fields.hpp"
+#include "grid/Grid.hpp"
+#include "momentum/ExactPlasticStep.hpp"
+#include "momentum/FixedPoint.hpp"
+#include "momentum/Momentum.hpp"
+#include "momentum/PlasticMatrices.hpp"
+#include "rheology/Rheology.hpp"
+
+namespace gf::momentum {
+
+struct NewtonOptions {
+  double tol = 1e-6;   // rheology.newton_tol: max |S - P(S + c E u)|, |s_t - P_b(...)|
+  int max_iter = 100;  // rheology.newton_max_iter
+};
+
+class NewtonPlastic {
+ public:
+  NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Params& rheo,
+                const NewtonOptions& opt);
+  ~NewtonPlastic();
+  NewtonPlastic(const NewtonPlastic&) = delete;
+  NewtonPlastic& operator=(const NewtonPlastic&) = delete;
+
+  // Solves the step's problem for u~ (in: the initial guess; out: the prediction) and s.S,
+  // s.s_wall (in: S^n, s_t^n as the start; out: the step's), with in.kappa_b refreshed.
+  // rhs0: Predictor::explicit_rhs; A: the assembled operator of pred; a0dt = a0/dt (1/s).
+  // Stats as the fixed point's: iters = the Newton iterations, change = the last residual.
+  // Collective.
+  FixedPointStats solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u_tilde, double a0dt);
+
+ private:
+  const Grid& g_;
+  Predictor& pred_;
+  rheology::Params rheo_;
+  NewtonOptions opt_;
+  ExactPlasticStep step_;
+  PlasticMatrices m_;
+  Vec c_ = nullptr;      // dm_cell, s: c = r kappa
+  Vec c_rigid_ = nullptr;  // dm_cell, s: the rigid cells' step, from the cell's own rho, eta
+  Vec c_num_ = nullptr;  // dm_vel wall storage, Pa s/m: c_b kappa_b
+};
+
+}  // namespace gf::momentum
