@@ -16,6 +16,12 @@
 #     held block and its internal stress are not unique, and kappa_b, which includes kappa S_nn
 #     (eq. 22), drifts with them. The paper's fixed point on the same run creeps at up to
 #     6.6e-4 m/s, 74 steps capped (printed for comparison, not required).
+#  3. The Drucker-Prager pile of cases/verify/dp_pile.toml (n = 32) with 20 deg slopes (friction
+#     25.5 deg), from zero stress, with the default yield support, to 0.1 s: from t = 0.01 s on
+#     the largest granular speed stays below 1e-6 m/s (outputs every 5 ms), and at 0.1 s it is
+#     below 1e-7 m/s. The first steps move, as the block's: 1.8e-4 m/s after the first step,
+#     2e-5 at 4 ms, 6.4e-7 at 10 ms. Measured to 1 s (0.15 s per step): 6.4e-7 m/s at most
+#     from 10 ms on, 4.6e-15 m/s at 1 s; the fixed point: 1.7e-4 m/s at 10 ms, 1.6e-7 m/s at 1 s.
 # Usage: bash test_newton_plastic.sh <granflow binary> <source dir>
 set -euo pipefail
 bin="$1"; src="$2"
@@ -29,10 +35,15 @@ run() {  # run <name> <args...>
   "$bin" run "$@" --out "$tmp/$name" > "$tmp/$name.log" 2>&1 ||
     { cat "$tmp/$name.log"; echo "FAIL: run $name"; exit 1; }
 }
+PILE=("$src/cases/verify/dp_pile.toml" --set initial.slope=20 --set initial.stress=zero
+      --set rheology.yield_support=phase --set output.vtk_interval=0 --set time.t_end=0.1
+      --set output.interval=0.005 --set rheology.solver=newton)
 run slide "${B[@]}" --set rheology.solver=newton &
 run hold "${B[@]}" "${HOLD[@]}" --set rheology.solver=newton &
 wait
+run pile "${PILE[@]}" &
 run hold_fp "${B[@]}" "${HOLD[@]}"
+wait
 PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
 import json, math, sys
 import numpy as np
@@ -62,6 +73,13 @@ for name in ("hold", "hold_fp"):
           f"steps (max residual {s.get('fp_capped_max_change', 0):.1e})")
     if name == "hold" and (mean > 1e-8 or last > 1e-6):
         print("FAIL: the held block moves"); ok = False
+d = gr.read_csv(f"{tmp}/pile/diagnostics.csv")
+m = d["t"] >= 0.01 - 1e-12
+vmax, vlast = float(d["max_speed_granular"][m].max()), float(d["max_speed_granular"][-1])
+print(f"pile: largest granular speed from 0.01 s on {vmax:.2e} m/s, at 0.1 s {vlast:.2e} m/s "
+      f"(at 5 ms: {float(d['max_speed_granular'][1]):.2e})")
+if vmax > 1e-6 or vlast > 1e-7:
+    print("FAIL: the pile moves"); ok = False
 sys.exit(0 if ok else 1)
 PY
-echo "PASS: the exact plastic step slides and holds the Coulomb block"
+echo "PASS: the exact plastic step slides and holds the Coulomb block and holds the pile"
