@@ -19,7 +19,9 @@
 # gate its front stops short of 1.1 m; `none` is not run there, its front reaches the far wall:
 # docs/VALIDATION.md has it; `VARIANTS="side gate"` adds the side walls alone and the gate alone
 # at n = 256: `both` took 9127 s (1, 2, then 1 rank, beside another run), `side` ran 8927 s to
-# t = 1.05 s of 1.36 s on one core), into runs/channel_fine/, written by channel.py to
+# t = 1.05 s of 1.36 s on one core), and case B's 2D model at 768 x 256 in the 2 m channel
+# (`b_n256_2m`, 1113 x 256 cells: the reference for those effects at that grid; 4627 s on one
+# core), into runs/channel_fine/, written by channel.py to
 # docs/channel_compare_fine.md (its figures channel_front_fine_*.png).
 #
 # SET=lid: the domain's lid above the gate. The plate's top (boundary.gate.height) is 2 cm below

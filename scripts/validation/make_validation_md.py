@@ -74,10 +74,11 @@ def channel_fine_section(path):
 CHANNEL_FINE_INTRO = (
     "The same on the finer grids: case A at n = 256 (the paper's finest grid) with the side "
     "walls, the gate and both; case B at n = 128 (`none`, `both`) and at the paper's "
-    "768 × 256 with the side walls and with both (its gate alone is listed as interrupted "
-    "while it has not completed), made by `SET=fine scripts/validation/channel.sh` (the "
-    "tables of `docs/channel_compare_fine.md`). The 2D model (`none`) at these grids is in the "
-    "paper-case tables above.")
+    "768 × 256 with the side walls and with both, and case B's 2D model at 768 × 256 in the "
+    "2 m channel (`b_n256_2m`, the reference for the side walls' and both's effects at that "
+    "grid: docs/CHANNEL.md gives them), made by `SET=fine scripts/validation/channel.sh` (the "
+    "tables of `docs/channel_compare_fine.md`). Case A's 2D model (`none`) at n = 256 is in the "
+    "paper-case tables above. Case B's gate alone at 768 × 256 has not been run.")
 
 
 def channel_lid_section(path):
