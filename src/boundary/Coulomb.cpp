@@ -165,7 +165,7 @@ double CoulombWalls::update(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, 
       s = 0.0;
       return;
     }
-    const double rb = r_factor * (rc * a0dt * h + 2.0 * ec / h) / (k * k);
+    const double rb = r_factor * stiffness(rc, ec, a0dt, h) / (k * k);
     const double snew = project_b(s + rb * k * ut + theta * (s_n - s));
     change = std::max(change, std::abs(snew - s));
     s = snew;

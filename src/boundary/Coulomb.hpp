@@ -110,6 +110,12 @@ class CoulombWalls {
   // (collective).
   double update(Vec u_tilde, Vec kappa_b, Vec s_wall, Vec s_wall_n, Vec rho, Vec eta,
                 double a0_over_dt, double theta, double r_factor) const;
+  // The stiffness of the first face velocity against a wall traction, Pa s/m: inertia
+  // rho a0 h / dt and viscosity 2 eta / h (h the spacing normal to the wall). r_b kappa_b^2 =
+  // r_factor times it (update; the exact step's c_b kappa_b, momentum/NewtonPlastic.cpp).
+  static double stiffness(double rho, double eta, double a0_over_dt, double h) {
+    return rho * a0_over_dt * h + 2.0 * eta / h;
+  }
   // Collective.
   WallContact contact(Vec s_wall, Vec kappa_b) const;
 

@@ -10,6 +10,24 @@
 
 namespace gf::momentum {
 
+namespace {
+// The 3 x 3 block of a cell in M = Pi scale G L (dm_ten numbering from base), with
+// L = [[1/2, 0, -1/2], [0, 1, 0]] (the deviatoric strain rate (Dxx - Dyy)/2, Dxy) and Pi the
+// rows sxx, sxy, -sxx of the traceless tensor. Every entry is set, so the pattern stays.
+void set_cell_block(Mat M, PetscInt base, double scale, const double G[2][2]) {
+  double GL[2][3];
+  for (int a = 0; a < 2; ++a) {
+    GL[a][0] = scale * 0.5 * G[a][0];
+    GL[a][1] = scale * G[a][1];
+    GL[a][2] = -scale * 0.5 * G[a][0];
+  }
+  const PetscInt idx[3] = {base, base + 1, base + 2};
+  const double vals[9] = {GL[0][0], GL[0][1], GL[0][2], GL[1][0], GL[1][1],
+                          GL[1][2], -GL[0][0], -GL[0][1], -GL[0][2]};
+  GF_PETSC(MatSetValues(M, 3, idx, 3, idx, vals, INSERT_VALUES));
+}
+}  // namespace
+
 ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
   GF_PETSC(SNESCreate(g.comm(), &snes_));
   GF_PETSC(SNESSetOptionsPrefix(snes_, "exact_"));
@@ -94,19 +112,7 @@ void ExactPlasticStep::plastic_stress(Vec u, Vec T, bool jacobian) {
         G[0][1] = G[1][0] = -n0 * n1 / nq;
         G[1][1] = (1 - n1 * n1) / nq;
       }
-      const double kc = kk * c[j][i];
-      // G L with L = [[1/2, 0, -1/2], [0, 1, 0]], then Pi: rows sxx, sxy, -sxx.
-      double GL[2][3];
-      for (int a = 0; a < 2; ++a) {
-        GL[a][0] = kc * 0.5 * G[a][0];
-        GL[a][1] = kc * G[a][1];
-        GL[a][2] = -kc * 0.5 * G[a][0];
-      }
-      const PetscInt base = r0 + ((j - b.ys) * b.xm + (i - b.xs)) * 3;
-      const PetscInt idx[3] = {base, base + 1, base + 2};
-      const double vals[9] = {GL[0][0], GL[0][1], GL[0][2], GL[1][0], GL[1][1],
-                              GL[1][2], -GL[0][0], -GL[0][1], -GL[0][2]};
-      GF_PETSC(MatSetValues(M_, 3, idx, 3, idx, vals, INSERT_VALUES));
+      set_cell_block(M_, r0 + ((j - b.ys) * b.xm + (i - b.xs)) * 3, kk * c[j][i], G);
     }
   GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), T, &t));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), c_, &c));
@@ -312,17 +318,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
       t[j][i][0] = tx;
       t[j][i][1] = ty;
       t[j][i][2] = -tx;
-      double GL[2][3];
-      for (int a = 0; a < 2; ++a) {
-        GL[a][0] = kk * 0.5 * G[a][0];
-        GL[a][1] = kk * G[a][1];
-        GL[a][2] = -kk * 0.5 * G[a][0];
-      }
-      const PetscInt base = r0 + static_cast<PetscInt>(cell) * 3;
-      const PetscInt idx[3] = {base, base + 1, base + 2};
-      const double vals[9] = {GL[0][0], GL[0][1], GL[0][2], GL[1][0], GL[1][1],
-                              GL[1][2], -GL[0][0], -GL[0][1], -GL[0][2]};
-      GF_PETSC(MatSetValues(M_, 3, idx, 3, idx, vals, INSERT_VALUES));
+      set_cell_block(M_, r0 + static_cast<PetscInt>(cell) * 3, kk, G);
     }
   GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), T_, &t));
   GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), c_, &c));

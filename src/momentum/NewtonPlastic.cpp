@@ -7,12 +7,8 @@
 
 namespace gf::momentum {
 
-namespace {
-constexpr double kRigidFactor = 1e4;  // ExactStepOptions::rigid_factor, on the cell's own scale
-}  // namespace
-
 NewtonPlastic::NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Params& rheo,
-                             const NewtonOptions& opt)
+                             const ExactStepOptions& opt)
     : g_(g), pred_(pred), rheo_(rheo), opt_(opt), step_(g) {
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_));
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_rigid_));
@@ -52,15 +48,18 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
       for (PetscInt i = b.xs; i < b.xe(); ++i) {
         c[j][i] = rheology::r_local(rheo_, k[j][i], er[j][i], rr[j][i] * a0dt * h2) *
                   std::max(k[j][i], 0.0);
-        // The rigid cells' step: c_R kappa = 1e4 (2 eta + rho a0 h^2 / dt) with the cell's own
+        // The rigid cells' step: c_R kappa = rigid_factor (2 eta + rho a0 h^2 / dt) with the cell's own
         // rho and eta. The fixed point's r takes the lightest neighbour's (an interface cell's
         // r from the air's: 1000 times smaller), which there would make the rigid cells' update
         // an Uzawa step too short to converge fast (measured on the Coulomb block: a linear tail
         // at a ratio 0.75 per iteration).
-        cr[j][i] = k[j][i] > 0 ? kRigidFactor * (2.0 * eta[j][i] + rho[j][i] * a0dt * h2) / k[j][i]
+        cr[j][i] = k[j][i] > 0 ? opt_.rigid_factor * (2.0 * eta[j][i] + rho[j][i] * a0dt * h2) /
+                                     k[j][i]
                                : 0.0;
-        cn[j][i].u = rheo_.r_factor * (rho[j][i] * a0dt * b.hy + 2.0 * eta[j][i] / b.hy);
-        cn[j][i].v = rheo_.r_factor * (rho[j][i] * a0dt * b.hx + 2.0 * eta[j][i] / b.hx);
+        cn[j][i].u = rheo_.r_factor *
+                     boundary::CoulombWalls::stiffness(rho[j][i], eta[j][i], a0dt, b.hy);
+        cn[j][i].v = rheo_.r_factor *
+                     boundary::CoulombWalls::stiffness(rho[j][i], eta[j][i], a0dt, b.hx);
       }
     GF_PETSC(DMDAVecRestoreArray(g_.dm_vel(), c_num_, &cn));
     GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), c_, &c));
@@ -81,12 +80,9 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
     w.s_wall = s.s_wall;
     w.refresh = [&](Vec D, Vec S, Vec kb) { walls.yield(s.p, S, in.kappa, D, s.eta, kb); };
   }
-  ExactStepOptions o;
-  o.tol = opt_.tol;
-  o.max_outer = opt_.max_iter;
   ExactStepStats r;
   try {
-    r = step_.solve_newton(pred_.matrix(), rhs0, m_, in.kappa, c_, u_tilde, s.S, o,
+    r = step_.solve_newton(pred_.matrix(), rhs0, m_, in.kappa, c_, u_tilde, s.S, opt_,
                            wall ? &w : nullptr, c_rigid_);
   } catch (...) {
     walls.clear_cache();

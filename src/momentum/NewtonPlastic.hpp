@@ -21,15 +21,12 @@
 
 namespace gf::momentum {
 
-struct NewtonOptions {
-  double tol = 1e-6;   // rheology.newton_tol: max |S - P(S + c E u)|, |s_t - P_b(...)|
-  int max_iter = 100;  // rheology.newton_max_iter
-};
-
 class NewtonPlastic {
  public:
+  // opt: the solver's options; tol and max_outer from rheology.newton_tol and
+  // rheology.newton_max_iter.
   NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Params& rheo,
-                const NewtonOptions& opt);
+                const ExactStepOptions& opt);
   ~NewtonPlastic();
   NewtonPlastic(const NewtonPlastic&) = delete;
   NewtonPlastic& operator=(const NewtonPlastic&) = delete;
@@ -45,7 +42,7 @@ class NewtonPlastic {
   const Grid& g_;
   Predictor& pred_;
   rheology::Params rheo_;
-  NewtonOptions opt_;
+  ExactStepOptions opt_;
   ExactPlasticStep step_;
   PlasticMatrices m_;
   Vec c_ = nullptr;      // dm_cell, s: c = r kappa

@@ -587,21 +587,22 @@ double Simulation::advance(double dt) {
            " s): the run blew up; try a smaller time step (time.cfl, time.dt_max, or time.dt "
            "with time.dt_mode = fixed)");
   }
-  if (st.fp_capped && st.fp_change > rc_.fp_fail_change && rc_.newton)
-    fail("the exact plastic step (rheology.solver = \"newton\") did not converge: after "
-         "rheology.newton_max_iter = " + std::to_string(st.fp_iters) + " iterations its "
-         "residual is " + num(st.fp_change) + " (above rheology.fp_fail_change = " +
-         num(rc_.fp_fail_change) + "), at " + when() + " (dt = " + num(dt) +
-         " s): try a smaller time step, or rheology.solver = \"fixed_point\"; "
-         "--set \"solver.petsc_options=-exactpd_monitor\" logs every iteration");
-  if (st.fp_capped && st.fp_change > rc_.fp_fail_change && !rc_.newton)
+  if (st.fp_capped && st.fp_change > rc_.fp_fail_change) {
+    const std::string at = ", at " + when() + " (dt = " + num(dt) + " s): ";
+    if (rc_.newton)
+      fail("the exact plastic step (rheology.solver = \"newton\") did not converge: after "
+           "rheology.newton_max_iter = " + std::to_string(st.fp_iters) + " iterations its "
+           "residual is " + num(st.fp_change) + " (above rheology.fp_fail_change = " +
+           num(rc_.fp_fail_change) + ")" + at + "try a smaller time step, or rheology.solver = "
+           "\"fixed_point\"; --set \"solver.petsc_options=-exactpd_monitor\" logs every "
+           "iteration");
     fail("the fixed point of eq. 31 did not converge: after rheology.fp_max_iter = " +
          std::to_string(st.fp_iters) + " iterations its change is " + num(st.fp_change) +
          " (above rheology.fp_fail_change = " + num(rc_.fp_fail_change) + "; a sign flip of S "
-         "or s_t is a change of 2), at " + when() + " (dt = " + num(dt) +
-         " s): try a smaller rheology.r_factor (the augmentation), a smaller time step, or "
-         "a wider interface (levelset.eps_cells); --set rheology.fp_monitor=true logs every "
-         "iteration");
+         "or s_t is a change of 2)" + at + "try a smaller rheology.r_factor (the augmentation), "
+         "a smaller time step, or a wider interface (levelset.eps_cells); --set "
+         "rheology.fp_monitor=true logs every iteration");
+  }
   const diag::SpeedAt sp = diag::max_speed_at(g_, s_.vel);
   const double h = std::min(g_.hx(), g_.hy());
   if (sp.speed > rc_.max_speed)
