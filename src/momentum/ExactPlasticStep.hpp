@@ -131,7 +131,7 @@ class ExactPlasticStep {
   // -exactpd_monitor prints the residual of every iteration.
   //
   // Measured (test_exact_plastic_step_mpi.cpp, the steady channel, c factors 1 to 100, 16 to
-  // 64 cells across, rigid_factor 1e4): 2 Newton iterations for the plug (|u| 1.2e-12 m/s),
+  // 64 cells across, rigid_factor 1e4): 2-3 Newton iterations for the plug (|u| 1.2e-12 m/s),
   // 4-6 for the Bingham Poiseuille profile at every grid (second order: 1.09e-2, 2.71e-3,
   // 6.78e-4, and 1.70e-4 at 128 cells), no backtracking; where the method of multipliers takes
   // 33 to 130 updates, and does not converge in 200 at 64 cells. With c_R = c the rigid cells' step is the multipliers' (an

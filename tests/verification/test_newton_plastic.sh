@@ -5,7 +5,7 @@
 # settings otherwise (no equilibrium start, the default yield support and interface):
 #  1. theta = 30 deg: the block slides with a = g (sin theta - tan alpha_b cos theta) = 1.8128
 #     m/s^2 (least-squares slope of the mean granular velocity over [0.02, 0.1] s): within 1 %,
-#     with no capped step. Measured: -0.35 %, 5-8 Newton iterations per step.
+#     with no capped step. Measured: -0.35 %, 5-10 Newton iterations in the output steps.
 #  2. theta = 15 deg < alpha_b: the block holds. The first steps move it (the start's pressure
 #     is not the block's, and the projection that follows the exact plastic step corrects the
 #     velocity: the split of eqs. 31-32), then it comes to rest: over [0.06, 0.1] s the mean
