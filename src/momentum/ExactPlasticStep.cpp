@@ -28,6 +28,73 @@ void set_cell_block(Mat M, PetscInt base, double scale, const double G[2][2]) {
 }
 }  // namespace
 
+void saddle_blocks(const Grid& g, NewtonPressure& p) {
+  const Box& b = g.box();
+  PetscInt nv, nc, vx, vy, vm, cx, cy, cm;
+  {
+    Vec t;
+    GF_PETSC(DMGetGlobalVector(g.dm_vel(), &t));
+    GF_PETSC(VecGetLocalSize(t, &nv));
+    GF_PETSC(DMRestoreGlobalVector(g.dm_vel(), &t));
+    GF_PETSC(DMGetGlobalVector(g.dm_cell(), &t));
+    GF_PETSC(VecGetLocalSize(t, &nc));
+    GF_PETSC(DMRestoreGlobalVector(g.dm_cell(), &t));
+  }
+  GF_PETSC(DMDAGetGhostCorners(g.dm_vel(), &vx, &vy, nullptr, &vm, nullptr, nullptr));
+  GF_PETSC(DMDAGetGhostCorners(g.dm_cell(), &cx, &cy, nullptr, &cm, nullptr, nullptr));
+  // Local (ghosted) indices: the DMs' local-to-global maps wrap a periodic x.
+  auto vel = [&](PetscInt i, PetscInt j, int q) { return ((j - vy) * vm + (i - vx)) * 2 + q; };
+  auto cell = [&](PetscInt i, PetscInt j) { return (j - cy) * cm + (i - cx); };
+  ISLocalToGlobalMapping lv, lc;
+  GF_PETSC(DMGetLocalToGlobalMapping(g.dm_vel(), &lv));
+  GF_PETSC(DMGetLocalToGlobalMapping(g.dm_cell(), &lc));
+  const MPI_Comm comm = g.comm();
+  GF_PETSC(MatCreateAIJ(comm, nv, nc, PETSC_DETERMINE, PETSC_DETERMINE, 2, nullptr, 2, nullptr,
+                        &p.G));
+  GF_PETSC(MatCreateAIJ(comm, nc, nv, PETSC_DETERMINE, PETSC_DETERMINE, 4, nullptr, 4, nullptr,
+                        &p.Dv));
+  GF_PETSC(MatCreateAIJ(comm, nc, nc, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr,
+                        &p.Z));
+  GF_PETSC(MatSetLocalToGlobalMapping(p.G, lv, lc));
+  GF_PETSC(MatSetLocalToGlobalMapping(p.Dv, lc, lv));
+  GF_PETSC(MatSetLocalToGlobalMapping(p.Z, lc, lc));
+  const double ihx = 1.0 / b.hx, ihy = 1.0 / b.hy;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      // The gradient on the u-face i and the v-face j of the cell (wall faces: none, their rows
+      // of A keep u = 0).
+      if (!b.wall_u(i)) {
+        const PetscInt r = vel(i, j, 0), c[2] = {cell(i - 1, j), cell(i, j)};
+        const double v[2] = {-ihx, ihx};
+        GF_PETSC(MatSetValuesLocal(p.G, 1, &r, 2, c, v, INSERT_VALUES));
+      }
+      if (j > 0) {
+        const PetscInt r = vel(i, j, 1), c[2] = {cell(i, j - 1), cell(i, j)};
+        const double v[2] = {-ihy, ihy};
+        GF_PETSC(MatSetValuesLocal(p.G, 1, &r, 2, c, v, INSERT_VALUES));
+      }
+      const PetscInt r = cell(i, j);
+      // Every diagonal entry of Z is in its pattern (solve_saddle sets the rigid cells').
+      const double zd = (i == 0 && j == 0) ? 1.0 : 0.0;
+      GF_PETSC(MatSetValuesLocal(p.Z, 1, &r, 1, &r, &zd, INSERT_VALUES));
+      if (i == 0 && j == 0) continue;
+      // div u = (u_{i+1} - u_i) / hx + (v_{j+1} - v_j) / hy over the faces that are not walls.
+      PetscInt c[4];
+      double v[4];
+      int n = 0;
+      if (!b.wall_u(i)) { c[n] = vel(i, j, 0); v[n++] = -ihx; }
+      if (!b.wall_u(i + 1)) { c[n] = vel(i + 1, j, 0); v[n++] = ihx; }
+      if (j > 0) { c[n] = vel(i, j, 1); v[n++] = -ihy; }
+      if (j + 1 < b.ny) { c[n] = vel(i, j + 1, 1); v[n++] = ihy; }
+      GF_PETSC(MatSetValuesLocal(p.Dv, 1, &r, n, c, v, INSERT_VALUES));
+    }
+  for (Mat M : {p.G, p.Dv, p.Z}) {
+    GF_PETSC(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+    GF_PETSC(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  }
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &p.psi));
+}
+
 ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
   GF_PETSC(SNESCreate(g.comm(), &snes_));
   GF_PETSC(SNESSetOptionsPrefix(snes_, "exact_"));
@@ -58,6 +125,22 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
     // C M B widens the rows) took 18 ms where PETSc's own took 40 ms (Coulomb block, 120 x 30).
     GF_PETSC(PCFactorSetMatSolverType(pc2, MATSOLVERMUMPS));
   }
+  // The saddle point's zero (2,2) block makes MUMPS delay pivots beyond its default workspace
+  // (INFOG(1) = -9 on the unit test's 8 x 32 channel at the default 20 %, solved at 100 %):
+  // 200 % unless the user says otherwise.
+  PetscBool ws_set = PETSC_FALSE;
+  GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_sp_mat_mumps_icntl_14", &ws_set));
+  if (!ws_set) GF_PETSC(PetscOptionsSetValue(nullptr, "-exactpd_sp_mat_mumps_icntl_14", "200"));
+  GF_PETSC(KSPCreate(g.comm(), &ksp_sp_));
+  GF_PETSC(KSPSetOptionsPrefix(ksp_sp_, "exactpd_sp_"));
+  GF_PETSC(KSPSetType(ksp_sp_, KSPPREONLY));
+  {
+    PC pc3;
+    GF_PETSC(KSPGetPC(ksp_sp_, &pc3));
+    GF_PETSC(PCSetType(pc3, PCLU));
+    GF_PETSC(PCFactorSetMatSolverType(pc3, MATSOLVERMUMPS));
+  }
+  for (Vec* v : {&psi_prev_, &psi_newton_}) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
   PetscInt n;
   GF_PETSC(VecGetLocalSize(D_, &n));
   GF_PETSC(MatCreateAIJ(g.comm(), n, n, PETSC_DETERMINE, PETSC_DETERMINE, 3, nullptr, 0, nullptr,
@@ -67,6 +150,10 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
 ExactPlasticStep::~ExactPlasticStep() {
   SNESDestroy(&snes_);
   KSPDestroy(&ksp_);
+  KSPDestroy(&ksp_sp_);
+  MatDestroy(&K_);
+  MatDestroy(&Zk_);
+  for (Vec* v : {&X_, &R_, &psi_prev_, &psi_newton_, &zdiag_}) VecDestroy(v);
   for (Vec* v : {&rhs_, &u_prev_, &u_newton_, &S_prev_, &S_newton_, &wdiag_, &wrhs_, &sw_prev_,
                  &sw_newton_, &kb_old_})
     VecDestroy(v);
@@ -276,6 +363,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   PetscInt r0;
   GF_PETSC(VecGetOwnershipRange(D_, &r0, nullptr));
   lin_.assign(static_cast<size_t>(b.xm) * b.ym * 5, 0.0);
+  if (pres_) prox_.assign(static_cast<size_t>(b.xm) * b.ym, 0.0);
   double loc[2] = {wmax, wl2};  // max and sum of squares of |S - P(S + c E u)| (and walls')
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
@@ -288,11 +376,15 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
         const double q[2] = {s[0] + cc * 0.5 * (d[j][i][0] - d[j][i][2]), s[1] + cc * d[j][i][1]};
         const double nq = std::hypot(q[0], q[1]);
         const double f = nq > 1 ? 1 / nq : 1.0;
-        const double r = std::hypot(s[0] - f * q[0], s[1] - f * q[1]);
+        // With the pressure, a rigid cell's incompressibility is in its augmented form too
+        // (solve_saddle): c |div u| joins its residual (0 in a yielded cell after a solve).
+        const double dv = pres_ ? cc * (d[j][i][0] + d[j][i][2]) : 0.0;
+        const double r = std::hypot(std::hypot(s[0] - f * q[0], s[1] - f * q[1]), dv);
         loc[0] = std::max(loc[0], r);
         loc[1] += r * r;
         if (nq <= 1) {  // rigid: E u = 0 in its augmented form, step rigid_factor c
           G[0][0] = G[1][1] = cr ? cr[j][i] : opt.rigid_factor * cc;
+          if (pres_) prox_[cell] = kk * G[0][0];
           s0[0] = s[0];
           s0[1] = s[1];
         } else {  // yielded: Newton on S = q / |q|
@@ -430,8 +522,10 @@ void ExactPlasticStep::newton_update(Vec u) {
 
 ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrices& m, Vec kappa,
                                               Vec c, Vec u, Vec S, const ExactStepOptions& opt,
-                                              const NewtonWalls* walls, Vec c_rigid) {
+                                              const NewtonWalls* walls, Vec c_rigid,
+                                              const NewtonPressure* pressure) {
   walls_ = walls;
+  pres_ = pressure;
   c_rigid_ = c_rigid;
   A_ = A;
   b_ = b;
@@ -452,6 +546,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
   GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));
   GF_PETSC(KSPSetFromOptions(ksp_));
+  if (pres_) GF_PETSC(KSPSetFromOptions(ksp_sp_));
   // The line search's window: the 2-norms of the residual after the last iterations (from the
   // first solve on, and again from each refresh of kappa_b).
   constexpr size_t kWindow = 5;
@@ -509,14 +604,18 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       GF_PETSC(MatDiagonalSet(J_, wdiag_, ADD_VALUES));
       GF_PETSC(VecAXPY(rhs_, 1.0, wrhs_));
     }
-    GF_PETSC(KSPSetOperators(ksp_, J_, J_));
-    GF_PETSC(KSPSolve(ksp_, rhs_, u));
-    KSPConvergedReason why;
-    GF_PETSC(KSPGetConvergedReason(ksp_, &why));
-    if (why < 0)
-      throw RunError("exact plastic step: the Newton system's solve failed (" +
-                     std::string(KSPConvergedReasons[why]) + ") in iteration " +
-                     std::to_string(it + 1) + "; try -exactpd_ksp_monitor to see it");
+    if (pres_) {
+      solve_saddle(u, it);
+    } else {
+      GF_PETSC(KSPSetOperators(ksp_, J_, J_));
+      GF_PETSC(KSPSolve(ksp_, rhs_, u));
+      KSPConvergedReason why;
+      GF_PETSC(KSPGetConvergedReason(ksp_, &why));
+      if (why < 0)
+        throw RunError("exact plastic step: the Newton system's solve failed (" +
+                       std::string(KSPConvergedReasons[why]) + ") in iteration " +
+                       std::to_string(it + 1) + "; try -exactpd_ksp_monitor to see it");
+    }
     newton_update(u);
     st.outer = st.newton = it + 1;
     res = linearise(u, opt);
@@ -532,12 +631,14 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       GF_PETSC(VecCopy(u, u_newton_));
       GF_PETSC(VecCopy(lambda_, S_newton_));
       if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_newton_));
+      if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_newton_));
       for (double tau = 0.5; res.l2 >= (1 - 1e-4 * 2 * tau) * ref && tau > 1.0 / 1024;
            tau *= 0.5) {
         GF_PETSC(VecAXPBYPCZ(u, 1 - tau, tau, 0.0, u_prev_, u_newton_));
         GF_PETSC(VecAXPBYPCZ(lambda_, 1 - tau, tau, 0.0, S_prev_, S_newton_));
         if (walls_)
           GF_PETSC(VecAXPBYPCZ(walls_->s_wall, 1 - tau, tau, 0.0, sw_prev_, sw_newton_));
+        if (pres_) GF_PETSC(VecAXPBYPCZ(pres_->psi, 1 - tau, tau, 0.0, psi_prev_, psi_newton_));
         res = linearise(u, opt);
         ++st.backtracks;
       }
@@ -547,9 +648,86 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     GF_PETSC(VecCopy(u, u_prev_));
     GF_PETSC(VecCopy(lambda_, S_prev_));
     if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_prev_));
+    if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_prev_));
   }
   GF_PETSC(VecCopy(lambda_, S));
   return st;
+}
+
+void ExactPlasticStep::solve_saddle(Vec u, int it) {
+  // The blocks in a nest, assembled into one AIJ matrix for the direct solve (J_ changes at
+  // every iteration; the nest's index sets number each rank's u rows, then its psi rows).
+  // The rigid cells' rows of D: div u + (psi - psi_k) / (kappa c_R) = 0, the augmented form of
+  // div u = 0 with the step of their S (S = S_k + c_R E u): the pressure and the deviatoric
+  // stress kappa S of a rigid cell move by the same proximal step, kappa c_R times the
+  // violation of div u = 0 and E u = 0, so that the whole stress tensor moves by as little as
+  // the iteration needs (equal weights in its Frobenius norm). A rigid zone's stress is not
+  // unique (any equilibrium stress inside the yield surface will do); with div u = 0 held
+  // exactly there the pressure was free to drift from iteration to iteration and step to
+  // step: on the sliding Coulomb block at 120 x 30 cells it grew within 2 steps into a
+  // +-2000 Pa checkerboard with |S| near 1, the clipped wall load (p - kappa S_nn)^+ rose by
+  // 32 % and the block slid at half its acceleration. A pressure step 100 or 1e4 times
+  // longer than S's drifts the same way (the wall load up by 53 % and 23 %). Every fixed point
+  // still has div u = 0 and E u = 0 in the rigid cells.
+  if (!Zk_) {
+    GF_PETSC(MatDuplicate(pres_->Z, MAT_COPY_VALUES, &Zk_));
+    GF_PETSC(DMCreateGlobalVector(g_.dm_cell(), &zdiag_));
+  }
+  {
+    const Box& b = g_.box();
+    PetscScalar **z, **r;
+    const PetscScalar** ps;
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), zdiag_, &z));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), pres_->psi, &ps));
+    Vec rp;
+    GF_PETSC(DMGetGlobalVector(g_.dm_cell(), &rp));
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), rp, &r));
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        const double pr = prox_[static_cast<size_t>((j - b.ys) * b.xm + (i - b.xs))];
+        const bool pin = (i == 0 && j == 0);
+        z[j][i] = pin ? 1.0 : (pr > 0 ? 1.0 / pr : 0.0);
+        r[j][i] = pin ? 0.0 : z[j][i] * ps[j][i];
+      }
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), rp, &r));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), pres_->psi, &ps));
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), zdiag_, &z));
+    GF_PETSC(MatDiagonalSet(Zk_, zdiag_, INSERT_VALUES));
+    psi_rhs_ = rp;
+  }
+  Mat blocks[4] = {J_, pres_->G, pres_->Dv, Zk_};
+  Mat nest;
+  GF_PETSC(MatCreateNest(g_.comm(), 2, nullptr, 2, nullptr, blocks, &nest));
+  MatDestroy(&K_);
+  GF_PETSC(MatConvert(nest, MATAIJ, MAT_INITIAL_MATRIX, &K_));
+  IS rows[2];
+  GF_PETSC(MatNestGetISs(nest, rows, nullptr));
+  if (!X_) GF_PETSC(MatCreateVecs(K_, &X_, &R_));
+  Vec sub;
+  GF_PETSC(VecGetSubVector(R_, rows[0], &sub));
+  GF_PETSC(VecCopy(rhs_, sub));
+  GF_PETSC(VecRestoreSubVector(R_, rows[0], &sub));
+  GF_PETSC(VecGetSubVector(R_, rows[1], &sub));
+  GF_PETSC(VecCopy(psi_rhs_, sub));
+  GF_PETSC(VecRestoreSubVector(R_, rows[1], &sub));
+  GF_PETSC(DMRestoreGlobalVector(g_.dm_cell(), &psi_rhs_));
+  GF_PETSC(KSPSetOperators(ksp_sp_, K_, K_));
+  GF_PETSC(KSPSolve(ksp_sp_, R_, X_));
+  KSPConvergedReason why;
+  GF_PETSC(KSPGetConvergedReason(ksp_sp_, &why));
+  if (why < 0) {
+    MatDestroy(&nest);
+    throw RunError("exact plastic step: the Newton system's solve with the pressure failed (" +
+                   std::string(KSPConvergedReasons[why]) + ") in iteration " +
+                   std::to_string(it + 1) + "; try -exactpd_sp_ksp_monitor to see it");
+  }
+  GF_PETSC(VecGetSubVector(X_, rows[0], &sub));
+  GF_PETSC(VecCopy(sub, u));
+  GF_PETSC(VecRestoreSubVector(X_, rows[0], &sub));
+  GF_PETSC(VecGetSubVector(X_, rows[1], &sub));
+  GF_PETSC(VecCopy(sub, pres_->psi));
+  GF_PETSC(VecRestoreSubVector(X_, rows[1], &sub));
+  GF_PETSC(MatDestroy(&nest));
 }
 
 }  // namespace gf::momentum

@@ -31,11 +31,12 @@
 // solve_newton below (u and S updated together) converges in 2-6 iterations on the same
 // problems.
 //
-// The pressure is not in this problem (the projection of eq. 32 follows it), so a zone held
-// rigid here can still be deformed by the pressure correction (docs/RHEOLOGY.md, the Coulomb
-// block's first step). Not yet used by the stepper: a component, verified by
-// tests/unit/momentum/test_exact_plastic_step_mpi.cpp, of the coupled exact step issue 19 asks
-// for.
+// Without NewtonPressure the pressure is not in this problem (the projection of eq. 32 follows
+// it), so a zone held rigid here can still be deformed by the pressure correction
+// (docs/RHEOLOGY.md, the Coulomb block's first step); with it (solve_newton's last argument)
+// the pressure is solved in the same Newton system. The stepper uses solve_newton
+// (momentum/NewtonPlastic.hpp); solve() is verified by
+// tests/unit/momentum/test_exact_plastic_step_mpi.cpp and kept for comparison.
 #include <petscsnes.h>
 
 #include <functional>
@@ -88,6 +89,29 @@ struct NewtonWalls {
   std::function<void(Vec D, Vec S, Vec kappa_b)> refresh;
 };
 
+// The pressure in solve_newton (rheology.newton_pressure = "coupled"): the prediction of eq. 31
+// and the projection of eq. 32 solved as one system, so that the (u, S) it returns is
+// divergence-free and the plastic stress is in equilibrium with the step's pressure:
+//   A u - C Pi kappa S + G psi = b,   D u = 0,   S = P(S + c E u),
+// psi = p^{n+1} - p^n (b holds -grad p^n). Without it the projection that follows the plastic
+// step changes u where the plastic problem held it at rest (docs/RHEOLOGY.md). The blocks are
+// fixed by the grid (saddle_blocks below); each Newton iteration solves the saddle point
+// [[J, G], [D, Z]] by one direct solve (MUMPS LU, KSP prefix -exactpd_sp_).
+struct NewtonPressure {
+  Mat G = nullptr;    // dm_vel x dm_cell: (psi_i - psi_{i-1}) / h on the interior faces, Pa/m
+  Mat Dv = nullptr;   // dm_cell x dm_vel: div u (1/s), the pinned cell's row empty
+  Mat Z = nullptr;    // dm_cell x dm_cell: 1 on the pinned cell's diagonal (psi = 0 there)
+  Vec psi = nullptr;  // dm_cell, Pa: in the start; out p^{n+1} - p^n, 0 in the pinned cell
+};
+
+// The fixed blocks of NewtonPressure for the grid g: the interior faces' gradient and the cells'
+// divergence of projection/Projection.hpp (walls carry no flux; periodic x wraps), with the
+// divergence row of cell (0, 0) replaced by psi = 0 there. The divergence rows sum to zero on
+// a closed domain, so one of them is redundant and pinning psi takes its place: the solution
+// is the projection's up to the constant (the level is set afterwards). Collective; the caller
+// destroys G, Dv and Z. Not with the gate (its faces' open part is not in them).
+void saddle_blocks(const Grid& g, NewtonPressure& p);
+
 struct ExactStepStats {
   int outer = 0;          // multiplier updates
   int newton = 0;         // Newton iterations, all inner solves
@@ -130,6 +154,14 @@ class ExactPlasticStep {
   // solve()). Linear solves: KSP prefix -exactpd_, default a direct solve (MUMPS LU);
   // -exactpd_monitor prints the residual of every iteration.
   //
+  // With `pressure` (NewtonPressure), each iteration solves the saddle point with the pressure
+  // instead (solve_saddle), and a rigid cell's incompressibility is taken in the same augmented
+  // form as its E u = 0: psi = psi_k - kappa c_R div u, c |div u| in its residual. Measured
+  // (the unit test's channel with gravity, ny = 32): the velocity of the step without the
+  // pressure to 3e-11, the rows' mean vertical stress hydrostatic to 1e-10, in 21 iterations
+  // on 1 rank and 31 on 2 (4 without the pressure: the rigid cells' pressure moves by its
+  // proximal step); the plug at rest (1.6e-15 m/s) in 29.
+  //
   // Measured (test_exact_plastic_step_mpi.cpp, the steady channel, c factors 1 to 100, 16 to
   // 64 cells across, rigid_factor 1e4): 2-3 Newton iterations for the plug (|u| 1.2e-12 m/s),
   // 4-6 for the Bingham Poiseuille profile at every grid (second order: 1.09e-2, 2.71e-3,
@@ -139,7 +171,8 @@ class ExactPlasticStep {
   // direction flips); the line search then makes it converge, but linearly (ratio 0.9).
   ExactStepStats solve_newton(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c, Vec u,
                               Vec S, const ExactStepOptions& opt = {},
-                              const NewtonWalls* walls = nullptr, Vec c_rigid = nullptr);
+                              const NewtonWalls* walls = nullptr, Vec c_rigid = nullptr,
+                              const NewtonPressure* pressure = nullptr);
 
  private:
   const Grid& g_;
@@ -159,6 +192,19 @@ class ExactPlasticStep {
   // The walls (null: none): per face (s0, g) of the last linearisation (two per dm_vel local
   // entry), the diagonal kappa_b g / h and the right-hand side -kappa_b s0 / h they add, and
   // the line search's copies of s_t.
+  // The pressure (null: none): the saddle point's nest of blocks, its assembled copy, its
+  // solver and vectors, its row index sets (u, psi), and the line search's copies of psi.
+  const NewtonPressure* pres_ = nullptr;
+  KSP ksp_sp_ = nullptr;
+  Mat K_ = nullptr;
+  Vec X_ = nullptr, R_ = nullptr, psi_prev_ = nullptr, psi_newton_ = nullptr;
+  // Per owned cell, kappa c_R of a rigid cell in the last linearisation (0: yielded or no
+  // yield stress); the (2,2) block with 1 / (kappa c_R) there, and the psi rows' rhs.
+  std::vector<double> prox_;
+  Mat Zk_ = nullptr;
+  Vec zdiag_ = nullptr, psi_rhs_ = nullptr;
+  // One Newton system with the pressure: (J_, G; Dv, Z) (u, psi) = (rhs_, 0). Collective.
+  void solve_saddle(Vec u, int it);
   const NewtonWalls* walls_ = nullptr;
   Vec c_rigid_ = nullptr;  // dm_cell, s: the rigid cells' step (null: rigid_factor c)
   std::vector<double> linw_;

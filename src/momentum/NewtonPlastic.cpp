@@ -8,8 +8,12 @@
 namespace gf::momentum {
 
 NewtonPlastic::NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Params& rheo,
-                             const ExactStepOptions& opt)
+                             const ExactStepOptions& opt, bool coupled)
     : g_(g), pred_(pred), rheo_(rheo), opt_(opt), step_(g) {
+  if (coupled) {
+    saddle_blocks(g, pres_);
+    GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &p_step_));
+  }
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_));
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_rigid_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &c_num_));
@@ -19,6 +23,11 @@ NewtonPlastic::~NewtonPlastic() {
   VecDestroy(&c_);
   VecDestroy(&c_rigid_);
   VecDestroy(&c_num_);
+  VecDestroy(&p_step_);
+  VecDestroy(&pres_.psi);
+  MatDestroy(&pres_.G);
+  MatDestroy(&pres_.Dv);
+  MatDestroy(&pres_.Z);
 }
 
 FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u_tilde,
@@ -78,12 +87,21 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
     w.kappa_b = in.kappa_b;
     w.c_num = c_num_;
     w.s_wall = s.s_wall;
-    w.refresh = [&](Vec D, Vec S, Vec kb) { walls.yield(s.p, S, in.kappa, D, s.eta, kb); };
+    w.refresh = [&](Vec D, Vec S, Vec kb) {
+      if (coupled()) {  // the pressure at the current iterate
+        GF_PETSC(VecWAXPY(p_step_, 1.0, pres_.psi, s.p));
+        walls.cache_inputs(p_step_, in.kappa, s.eta);
+        walls.yield(p_step_, S, in.kappa, D, s.eta, kb);
+      } else {
+        walls.yield(s.p, S, in.kappa, D, s.eta, kb);
+      }
+    };
   }
+  if (coupled()) GF_PETSC(VecSet(pres_.psi, 0.0));
   ExactStepStats r;
   try {
     r = step_.solve_newton(pred_.matrix(), rhs0, m_, in.kappa, c_, u_tilde, s.S, opt_,
-                           wall ? &w : nullptr, c_rigid_);
+                           wall ? &w : nullptr, c_rigid_, coupled() ? &pres_ : nullptr);
   } catch (...) {
     walls.clear_cache();
     throw;

@@ -24,9 +24,11 @@ namespace gf::momentum {
 class NewtonPlastic {
  public:
   // opt: the solver's options; tol and max_outer from rheology.newton_tol and
-  // rheology.newton_max_iter.
+  // rheology.newton_max_iter. coupled (rheology.newton_pressure = "coupled"): the pressure in
+  // the same Newton system (NewtonPressure): u~ is then u^{n+1}, divergence-free, and psi()
+  // p^{n+1} - p^n, which replace the projection of eq. 32.
   NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Params& rheo,
-                const ExactStepOptions& opt);
+                const ExactStepOptions& opt, bool coupled);
   ~NewtonPlastic();
   NewtonPlastic(const NewtonPlastic&) = delete;
   NewtonPlastic& operator=(const NewtonPlastic&) = delete;
@@ -36,7 +38,12 @@ class NewtonPlastic {
   // rhs0: Predictor::explicit_rhs; A: the assembled operator of pred; a0dt = a0/dt (1/s).
   // Stats as the fixed point's: iters = the Newton iterations, change = the last residual.
   // Collective.
+  // With the pressure, the Coulomb walls' kappa_b is refreshed from p^n + psi (the step's
+  // pressure), not p^n.
   FixedPointStats solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u_tilde, double a0dt);
+  bool coupled() const { return pres_.psi != nullptr; }
+  // The last solve's p^{n+1} - p^n up to a constant (dm_cell, Pa); null unless coupled.
+  Vec psi() const { return pres_.psi; }
 
  private:
   const Grid& g_;
@@ -48,6 +55,8 @@ class NewtonPlastic {
   Vec c_ = nullptr;      // dm_cell, s: c = r kappa
   Vec c_rigid_ = nullptr;  // dm_cell, s: the rigid cells' step, from the cell's own rho, eta
   Vec c_num_ = nullptr;  // dm_vel wall storage, Pa s/m: c_b kappa_b
+  NewtonPressure pres_;  // coupled: the saddle point's fixed blocks and psi
+  Vec p_step_ = nullptr;  // coupled with walls: p^n + psi for kappa_b (dm_cell, Pa)
 };
 
 }  // namespace gf::momentum

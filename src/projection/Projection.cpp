@@ -169,7 +169,13 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
   // (an incline with a free-slip lid), a half-cell offset would leave the top row of cells with
   // no pressure and so no Drucker-Prager yield stress (eq. 19). Ranks own >= 3 rows each, so
   // both rows are local to the top ranks.
-  GF_PETSC(VecAXPY(p, 1.0, psi_));
+  add_increment(psi_, p);
+  return its;
+}
+
+void Projector::add_increment(Vec psi, Vec p) const {
+  const Box& b = g_.box();
+  GF_PETSC(VecAXPY(p, 1.0, psi));
   double top_sum = 0;
   {
     const PetscScalar** pa;
@@ -180,7 +186,6 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
     GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), p, &pa));
   }
   GF_PETSC(VecShift(p, -g_.sum(top_sum) / b.nx));
-  return its;
 }
 
 }  // namespace gf::projection

@@ -51,6 +51,10 @@ class Projector {
   void set_gate(const boundary::Gate* gate) { gate_ = gate; }
   // Projects u_tilde (in place -> u^{n+1}) and updates p (p^n -> p^{n+1}). Returns KSP iterations.
   int project(Vec vel, Vec p, Vec rho, double a0, double dt);
+  // p^{n+1} = p^n + psi with the level of project() (the mean pressure on the top boundary is
+  // zero): for a psi solved elsewhere (the exact plastic step with the pressure,
+  // momentum/ExactPlasticStep.hpp). Collective.
+  void add_increment(Vec psi, Vec p) const;
   // Whether the last project() had to solve again with GMRES after CG broke down.
   bool fell_back() const { return fell_back_; }
   // Whether the preconditioner is hypre PFMG on a MATHYPRESTRUCT matrix (the default).

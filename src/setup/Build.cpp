@@ -69,6 +69,7 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.fp.anderson_reset_ratio = rh.anderson_reset_ratio;
   p.fp.monitor = rh.fp_monitor;
   p.newton = rh.newton;
+  p.newton_coupled = rh.newton_coupled;
   p.newton_opt.tol = rh.newton_tol;
   p.newton_opt.max_outer = rh.newton_max_iter;
   p.fp.local_margin = c.solver.viscous_local_margin;

@@ -103,6 +103,7 @@ CaseConfig fill(const Params& p) {
   rh.anderson_reset_ratio = p.get_real("rheology.anderson_reset_ratio");
   rh.fp_monitor = p.get_bool("rheology.fp_monitor");
   rh.newton = p.get_string("rheology.solver") == "newton";
+  rh.newton_coupled = p.get_string("rheology.newton_pressure") == "coupled";
   rh.newton_tol = p.get_real("rheology.newton_tol");
   rh.newton_max_iter = static_cast<int>(p.get_int("rheology.newton_max_iter"));
 

@@ -512,7 +512,8 @@ void CaseChecks::rheology() {
                               "rheology.anderson_reset_ratio", "rheology.fp_monitor"})
           unused_keys.push_back({k, "rheology.solver = newton (theta = 0, no fixed point)"});
       else
-        for (const char* k : {"rheology.newton_tol", "rheology.newton_max_iter"})
+        for (const char* k : {"rheology.newton_tol", "rheology.newton_max_iter",
+                              "rheology.newton_pressure"})
           unused_keys.push_back({k, "rheology.solver = fixed_point"});
       for (const auto& [k, why] : unused_keys)
         if (p.is_set(k)) c.warnings.push_back(k + " is set but " + why + " does not use it");

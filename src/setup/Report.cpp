@@ -99,7 +99,10 @@ std::string rheology_text(const CaseConfig& c, double dt) {
     os << "           plastic step (eq. 31) solved exactly, theta = 0: semismooth Newton to a "
           "residual < "
        << g4(rh.newton_tol) << ", at most " << rh.newton_max_iter << " iterations; r_factor = "
-       << g4(rh.r_factor) << " (does not change the answer)\n";
+       << g4(rh.r_factor) << " (does not change the answer); "
+       << (rh.newton_coupled ? "with the pressure in the same system (newton_pressure = coupled)"
+                             : "then the projection of eq. 32 (newton_pressure = projection)")
+       << "\n";
   } else if (rh.yield != Yield::None) {
     const double theta = rh.theta_per_dt * dt;
     os << "           fixed point (eq. 31): theta = theta_per_dt x first dt = "

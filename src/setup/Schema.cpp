@@ -144,6 +144,12 @@ void declare_physics(Params& p) {
              "momentum/ExactPlasticStep.hpp): the rigid zones are rigid and the step does not "
              "depend on r_factor. Newton is not yet available with plastic_grid = cell_node, "
              "the side walls or the gate.");
+  p.add_enum("rheology.newton_pressure", "projection", kNewtonPressures,
+             "rheology.solver = newton: projection = the plastic step, then the projection of "
+             "eq. 32 (which can set a rigid zone moving again: a held block or pile moves in "
+             "its first steps); coupled = the pressure in the same Newton system (eqs. 31 and "
+             "32 solved together: divergence-free and at rest from the first step, but on a "
+             "collapse such as case A every step reaches newton_max_iter; docs/RHEOLOGY.md).");
   p.add_real("rheology.newton_tol", "", 1e-6, Range::gt(0),
              "rheology.solver = newton: stop when max |S - P(S + r kappa D)| over the cells and "
              "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this.");

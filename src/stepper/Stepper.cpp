@@ -41,7 +41,7 @@ Stepper::Stepper(const Grid& g, const PhysicsConfig& cfg) : g_(g), cfg_(cfg) {
     fixed_point_ = std::make_unique<momentum::FixedPoint>(g, *predictor_, cfg_.rheo, cfg_.fp);
   if (plastic && cfg_.newton)
     newton_ = std::make_unique<momentum::NewtonPlastic>(g, *predictor_, cfg_.rheo,
-                                                        cfg_.newton_opt);
+                                                        cfg_.newton_opt, cfg_.newton_coupled);
   for (Vec* v : {&kappa_, &p_hyd_, &gran_, &eta_s_, &rho_r_, &eta_r_, &support_, &granular_,
                  &eta_node_})
     GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
@@ -189,11 +189,14 @@ void Stepper::predict(State& s, double a0dt, double dt, StepStats& st) {
 }
 
 void Stepper::project(State& s, bool props_change, double a0, double dt, StepStats& st) {
-  {
-    prof::Scope ps(prof::Assemble);
-    if (props_change) projector_->assemble(s.rho);
-  }
-  {
+  if (newton_ && newton_->coupled()) {
+    // The exact plastic step solved the pressure with the velocity: u~ is u^{n+1} already.
+    projector_->add_increment(newton_->psi(), s.p);
+  } else {
+    {
+      prof::Scope ps(prof::Assemble);
+      if (props_change) projector_->assemble(s.rho);
+    }
     prof::Scope ps(prof::Pressure);
     st.pres_its = projector_->project(u_tilde_, s.p, s.rho, a0, dt);
     st.pres_fallback = projector_->fell_back();

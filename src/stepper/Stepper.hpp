@@ -42,6 +42,7 @@ struct PhysicsConfig {
   rheology::Params rheo;                       // yield stress, viscosity law, fixed point
   momentum::FixedPointOptions fp;              // acceleration, monitor, local solves
   bool newton = false;                         // rheology.solver = "newton"
+  bool newton_coupled = false;                 // ... with the pressure (rheology.newton_pressure)
   momentum::ExactStepOptions newton_opt;       // its tolerance (tol) and cap (max_outer)
   // m: the yield stress and the Coulomb wall friction act where phi < yield_support (0: the
   // granular phase, the paper; eps: wherever eq. 25 gives granular mass,
