@@ -21,7 +21,11 @@
 # at n = 256: `both` took 9127 s (1, 2, then 1 rank, beside another run), `side` ran 8927 s to
 # t = 1.05 s of 1.36 s on one core), and case B's 2D model at 768 x 256 in the 2 m channel
 # (`b_n256_2m`, 1113 x 256 cells: the reference for those effects at that grid; 4627 s on one
-# core), into runs/channel_fine/, written by channel.py to
+# core), and case B with the gate alone at 768 x 256 cells' size in a domain a quarter taller
+# (`b_n256_tall`, 768 x 320 cells, Ly = 0.575 m, on 2 ranks: the air returning over the plate
+# in the case file's domain held `gate` near dt = 5e-5 s, 1670 steps to t = 0.21 s; SET=lid
+# shows that the taller domain moves the figures by at most 1.5 %), into runs/channel_fine/,
+# written by channel.py to
 # docs/channel_compare_fine.md (its figures channel_front_fine_*.png).
 #
 # SET=lid: the domain's lid above the gate. The plate's top (boundary.gate.height) is 2 cm below
@@ -63,6 +67,7 @@ if [[ "$set_name" == fine ]]; then
     "a_n256|cases/ar07_rough|--set grid.n=256 $opts0|2"
     "b_n256|cases/ar2_smooth|--set grid.n=256 $opts0|1|side gate both"
     "b_n256_2m|cases/ar2_smooth|--set grid.n=256 --set domain.Lx=2.0 $opts0|1|none"
+    "b_n256_tall|cases/ar2_smooth|--set grid.n=320 --set domain.Ly=0.575 $opts0|2|gate"
   )
 fi
 if [[ "$set_name" == lid ]]; then

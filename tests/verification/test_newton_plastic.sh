@@ -33,6 +33,11 @@
 #     on (measured: 8.9e-6 at 0.345 s, 8.6e-23 at 0.35 s, 1e-44 at 1 s); with the projection
 #     after the plastic step it decays exponentially and is still above 1e-14 at 0.6 s
 #     (measured 1.5e-13 at 0.6 s, 7e-23 at 1 s: a factor of about 200 per 0.1 s).
+#  6. The knobs, on that cessation with the pressure: rheology.r_factor and rheology.newton_tol
+#     each 4 times their default do not move KE(0.3 s) by more than 1e-6 relative nor the stop
+#     time T_f (where sqrt(KE) extrapolated from 0.34 and 0.345 s reaches zero) by more than
+#     1e-4 s. Measured: 3.4e-9 and 4.1e-8; T_f = 0.34816 s in all three (and with r_factor / 4,
+#     newton_tol / 4: 4.4e-9, 3.9e-9).
 # Usage: bash test_newton_plastic.sh <granflow binary> <source dir>
 set -euo pipefail
 bin="$1"; src="$2"
@@ -63,6 +68,9 @@ CESS=("$src/cases/verify/bingham_cessation.toml" --set rheology.plastic_grid=cel
 run cess_c "${CESS[@]}" "${C[@]}" &
 run cess_p "${CESS[@]}" &
 run pile_c "${PILE[@]}" "${C[@]}"
+wait
+run cess_r4 "${CESS[@]}" "${C[@]}" --set rheology.r_factor=2 &
+run cess_tol4 "${CESS[@]}" "${C[@]}" --set rheology.newton_tol=4e-6 &
 wait
 PYTHONPATH="$src/scripts" /usr/bin/python3 - "$tmp" <<'PY'
 import json, math, sys
@@ -130,6 +138,20 @@ for name in ("cess_c", "cess_p"):
     if name == "cess_p" and at06 < 1e-14:
         print("FAIL: the projection variant stops too: the check does not tell the two apart")
         ok = False
+def stop(name):  # KE(0.3 s) / KE(0) and T_f from sqrt(KE) at 0.34 and 0.345 s
+    d = gr.read_csv(f"{tmp}/{name}/diagnostics.csv")
+    ke = d["kinetic_energy"] / d["kinetic_energy"][0]
+    i = int(np.argmin(np.abs(d["t"] - 0.34)))
+    a, b = math.sqrt(ke[i]), math.sqrt(ke[i + 1])
+    dt = d["t"][i + 1] - d["t"][i]
+    return float(ke[np.argmin(np.abs(d["t"] - 0.3))]), float(d["t"][i + 1] + b * dt / (a - b))
+k0, t0 = stop("cess_c")
+for name, knob in (("cess_r4", "r_factor x 4"), ("cess_tol4", "newton_tol x 4")):
+    k, t = stop(name)
+    print(f"cessation with the pressure, {knob}: KE(0.3 s) moves by {abs(k / k0 - 1):.1e} "
+          f"relative, T_f {t:.5f} s against {t0:.5f} s")
+    if abs(k / k0 - 1) > 1e-6 or abs(t - t0) > 1e-4:
+        print(f"FAIL: the cessation moves with {knob}"); ok = False
 sys.exit(0 if ok else 1)
 PY
 echo "PASS: the exact plastic step slides and holds the Coulomb block, holds the pile and, with the pressure, stops the Bingham vortex on the cell grid"
