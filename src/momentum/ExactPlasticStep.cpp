@@ -698,8 +698,11 @@ void ExactPlasticStep::solve_saddle(Vec u, int it) {
   Mat blocks[4] = {J_, pres_->G, pres_->Dv, Zk_};
   Mat nest;
   GF_PETSC(MatCreateNest(g_.comm(), 2, nullptr, 2, nullptr, blocks, &nest));
-  MatDestroy(&K_);
-  GF_PETSC(MatConvert(nest, MATAIJ, MAT_INITIAL_MATRIX, &K_));
+  // The pattern of K is the same at every iteration (J's and Z's are fixed for the step), so
+  // from the second on the copy is refilled and the direct solver keeps its analysis.
+  const bool reuse = K_ != nullptr && it > 0;
+  if (!reuse) MatDestroy(&K_);
+  GF_PETSC(MatConvert(nest, MATAIJ, reuse ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &K_));
   IS rows[2];
   GF_PETSC(MatNestGetISs(nest, rows, nullptr));
   if (!X_) GF_PETSC(MatCreateVecs(K_, &X_, &R_));
