@@ -78,7 +78,10 @@ CHANNEL_FINE_INTRO = (
     "2 m channel (`b_n256_2m`, the reference for the side walls' and both's effects at that "
     "grid: docs/CHANNEL.md gives them), made by `SET=fine scripts/validation/channel.sh` (the "
     "tables of `docs/channel_compare_fine.md`). Case A's 2D model (`none`) at n = 256 is in the "
-    "paper-case tables above. Case B's gate alone at 768 × 256 has not been run.")
+    "paper-case tables above. Case B's gate alone is at the same cell size (768 columns) in a "
+    "domain a quarter taller (`b_n256_tall`, 768 × 320 cells: in the case file's domain the air "
+    "over the plate held the step near 5e-5 s; the taller domain moves case B's figures by at "
+    "most 1.5 % at n = 64 and 128, `docs/channel_compare_lid.md`).")
 
 
 def channel_lid_section(path):
