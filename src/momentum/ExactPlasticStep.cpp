@@ -699,7 +699,9 @@ void ExactPlasticStep::solve_saddle(Vec u, int it) {
   Mat nest;
   GF_PETSC(MatCreateNest(g_.comm(), 2, nullptr, 2, nullptr, blocks, &nest));
   // The pattern of K is the same at every iteration (J's and Z's are fixed for the step), so
-  // from the second on the copy is refilled and the direct solver keeps its analysis.
+  // from the second on the copy is refilled and the direct solver keeps its analysis (on one
+  // rank: on more, PETSc 3.18's MatConvert_Nest_AIJ preallocates the reused matrix again, so
+  // MUMPS analyses it again; the answers are the same).
   const bool reuse = K_ != nullptr && it > 0;
   if (!reuse) MatDestroy(&K_);
   GF_PETSC(MatConvert(nest, MATAIJ, reuse ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &K_));

@@ -4,6 +4,7 @@
 
 #include "core/Error.hpp"
 #include "core/Profile.hpp"
+#include "projection/Projection.hpp"
 
 namespace gf::momentum {
 
@@ -88,8 +89,11 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
     w.c_num = c_num_;
     w.s_wall = s.s_wall;
     w.refresh = [&](Vec D, Vec S, Vec kb) {
-      if (coupled()) {  // the pressure at the current iterate
+      if (coupled()) {  // the pressure at the current iterate, at the level p^{n+1} will have
+        // (psi is pinned at a corner cell: without the level, kappa_b would take a constant
+        // as large as the corner's pressure).
         GF_PETSC(VecWAXPY(p_step_, 1.0, pres_.psi, s.p));
+        projection::set_level(g_, p_step_);
         walls.cache_inputs(p_step_, in.kappa, s.eta);
         walls.yield(p_step_, S, in.kappa, D, s.eta, kb);
       } else {

@@ -504,7 +504,7 @@ void CaseChecks::rheology() {
       if (rh.yield == Yield::None)
         for (const char* k : {"rheology.r_factor", "rheology.theta_per_dt", "rheology.fp_tol",
                               "rheology.plastic_grid", "rheology.yield_support",
-                              "rheology.fp_max_iter"})
+                              "rheology.fp_max_iter", "rheology.newton_pressure"})
           unused_keys.push_back({k, y + " (no plastic fixed point)"});
       if (rh.newton)
         for (const char* k : {"rheology.theta_per_dt", "rheology.fp_tol", "rheology.fp_tol_u",

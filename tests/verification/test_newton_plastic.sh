@@ -26,7 +26,7 @@
 #     no projection after the plastic step, so the block and the pile are at rest from the
 #     first step: the largest granular speed at every output (from t = 0.01 s for the block,
 #     5 ms for the pile) below 1e-8 m/s, and the block slides within 1 % with no capped step.
-#     Measured: held block 8.8e-21 m/s at most, pile 3.0e-10 m/s (then 1e-18), slide -0.48 %.
+#     Measured: held block 9.6e-21 m/s at most, pile 3.0e-10 m/s (then 1e-18), slide -0.48 %.
 #  5. Bingham cessation on the paper's cell-only grid (cases/verify/bingham_cessation.toml with
 #     rheology.plastic_grid = "cell", n = 16, dt 5e-3): with the pressure in the Newton system
 #     the vortex stops in finite time, the kinetic energy below 1e-20 of its start from t = 0.4 s
