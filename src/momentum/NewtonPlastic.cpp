@@ -4,7 +4,7 @@
 
 #include "core/Error.hpp"
 #include "core/Profile.hpp"
-#include "projection/Projection.hpp"
+#include "operators/Operators.hpp"
 
 namespace gf::momentum {
 
@@ -93,7 +93,7 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
         // (psi is pinned at a corner cell: without the level, kappa_b would take a constant
         // as large as the corner's pressure).
         GF_PETSC(VecWAXPY(p_step_, 1.0, pres_.psi, s.p));
-        projection::set_level(g_, p_step_);
+        ops::set_pressure_level(g_, p_step_);
         walls.cache_inputs(p_step_, in.kappa, s.eta);
         walls.yield(p_step_, S, in.kappa, D, s.eta, kb);
       } else {

@@ -1,5 +1,7 @@
 #include "operators/Operators.hpp"
 
+#include "core/Error.hpp"
+
 namespace gf::ops {
 
 namespace {
@@ -182,6 +184,20 @@ void divergence(const Box& b, const Vel* const* vel, PetscScalar** div) {
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i)
       div[j][i] = (vel[j][i + 1].u - vel[j][i].u) / b.hx + (vel[j + 1][i].v - vel[j][i].v) / b.hy;
+}
+
+void set_pressure_level(const Grid& g, Vec p) {
+  const Box& b = g.box();
+  double top_sum = 0;
+  {
+    const PetscScalar** pa;
+    GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), p, &pa));
+    if (b.ye() == b.ny)
+      for (PetscInt i = b.xs; i < b.xe(); ++i)
+        top_sum += 1.5 * pa[b.ny - 1][i] - 0.5 * pa[b.ny - 2][i];
+    GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), p, &pa));
+  }
+  GF_PETSC(VecShift(p, -g.sum(top_sum) / b.nx));
 }
 
 }  // namespace gf::ops

@@ -1,6 +1,8 @@
 #pragma once
 // Discrete operators on the MAC grid (pure functions of local ghosted arrays).
 // Index conventions: see grid/Grid.hpp. All loops run over the owned range of Box.
+#include <petscvec.h>
+
 #include "grid/Grid.hpp"
 
 namespace gf::ops {
@@ -59,5 +61,10 @@ void momentum_transport(const Box& b, double dt, double rho_air, double rho_gran
 
 // Divergence (u_{i+1} - u_i)/hx + (v_{j+1} - v_j)/hy at the owned cells, 1/s.
 void divergence(const Box& b, const Vel* const* vel, PetscScalar** div);
+
+// Shifts p (dm_cell) by a constant so that its mean on the top boundary y = Ly, extrapolated
+// from the last two rows of cells, is zero: the pressure level of the projection
+// (projection/Projection.hpp) and of the exact plastic step with the pressure. Collective.
+void set_pressure_level(const Grid& g, Vec p);
 
 }  // namespace gf::ops

@@ -175,21 +175,8 @@ int Projector::project(Vec vel, Vec p, Vec rho, double a0, double dt) {
 
 void Projector::add_increment(Vec psi, Vec p) const {
   GF_PETSC(VecAXPY(p, 1.0, psi));
-  set_level(g_, p);
+  ops::set_pressure_level(g_, p);
 }
 
-void set_level(const Grid& g, Vec p) {
-  const Box& b = g.box();
-  double top_sum = 0;
-  {
-    const PetscScalar** pa;
-    GF_PETSC(DMDAVecGetArrayRead(g.dm_cell(), p, &pa));
-    if (b.ye() == b.ny)
-      for (PetscInt i = b.xs; i < b.xe(); ++i)
-        top_sum += 1.5 * pa[b.ny - 1][i] - 0.5 * pa[b.ny - 2][i];
-    GF_PETSC(DMDAVecRestoreArrayRead(g.dm_cell(), p, &pa));
-  }
-  GF_PETSC(VecShift(p, -g.sum(top_sum) / b.nx));
-}
 
 }  // namespace gf::projection

@@ -36,10 +36,6 @@
 
 namespace gf::projection {
 
-// Shifts p (dm_cell) by a constant so that its mean on the top boundary y = Ly, extrapolated
-// from the last two rows of cells, is zero: the level of project() (below). Collective.
-void set_level(const Grid& g, Vec p);
-
 class Projector {
  public:
   Projector(const Grid& g, double rtol);
