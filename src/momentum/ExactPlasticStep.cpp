@@ -26,6 +26,16 @@ void set_cell_block(Mat M, PetscInt base, double scale, const double G[2][2]) {
                           GL[1][2], -GL[0][0], -GL[0][1], -GL[0][2]};
   GF_PETSC(MatSetValues(M, 3, idx, 3, idx, vals, INSERT_VALUES));
 }
+// A KSP that solves by one LU factorisation (MUMPS), options prefix `prefix`.
+void make_direct_ksp(MPI_Comm comm, const char* prefix, KSP* ksp) {
+  GF_PETSC(KSPCreate(comm, ksp));
+  GF_PETSC(KSPSetOptionsPrefix(*ksp, prefix));
+  GF_PETSC(KSPSetType(*ksp, KSPPREONLY));
+  PC pc;
+  GF_PETSC(KSPGetPC(*ksp, &pc));
+  GF_PETSC(PCSetType(pc, PCLU));
+  GF_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+}
 }  // namespace
 
 void saddle_blocks(const Grid& g, NewtonPressure& p) {
@@ -114,32 +124,16 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
   for (Vec* v : {&rhs_, &u_prev_, &u_newton_, &wdiag_, &wrhs_, &sw_prev_, &sw_newton_, &kb_old_})
     GF_PETSC(DMCreateGlobalVector(g.dm_vel(), v));
   for (Vec* v : {&S_prev_, &S_newton_}) GF_PETSC(DMCreateGlobalVector(g.dm_ten(), v));
-  GF_PETSC(KSPCreate(g.comm(), &ksp_));
-  GF_PETSC(KSPSetOptionsPrefix(ksp_, "exactpd_"));
-  GF_PETSC(KSPSetType(ksp_, KSPPREONLY));
-  {
-    PC pc2;
-    GF_PETSC(KSPGetPC(ksp_, &pc2));
-    GF_PETSC(PCSetType(pc2, PCLU));
-    // MUMPS also on one rank: its factorisation of the Newton matrix (the plastic coupling
-    // C M B widens the rows) took 18 ms where PETSc's own took 40 ms (Coulomb block, 120 x 30).
-    GF_PETSC(PCFactorSetMatSolverType(pc2, MATSOLVERMUMPS));
-  }
+  // MUMPS also on one rank: its factorisation of the Newton matrix (the plastic coupling
+  // C M B widens the rows) took 18 ms where PETSc's own took 40 ms (Coulomb block, 120 x 30).
+  make_direct_ksp(g.comm(), "exactpd_", &ksp_);
   // The saddle point's zero (2,2) block makes MUMPS delay pivots beyond its default workspace
   // (INFOG(1) = -9 on the unit test's 8 x 32 channel at the default 20 %, solved at 100 %):
   // 200 % unless the user says otherwise.
   PetscBool ws_set = PETSC_FALSE;
   GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_sp_mat_mumps_icntl_14", &ws_set));
   if (!ws_set) GF_PETSC(PetscOptionsSetValue(nullptr, "-exactpd_sp_mat_mumps_icntl_14", "200"));
-  GF_PETSC(KSPCreate(g.comm(), &ksp_sp_));
-  GF_PETSC(KSPSetOptionsPrefix(ksp_sp_, "exactpd_sp_"));
-  GF_PETSC(KSPSetType(ksp_sp_, KSPPREONLY));
-  {
-    PC pc3;
-    GF_PETSC(KSPGetPC(ksp_sp_, &pc3));
-    GF_PETSC(PCSetType(pc3, PCLU));
-    GF_PETSC(PCFactorSetMatSolverType(pc3, MATSOLVERMUMPS));
-  }
+  make_direct_ksp(g.comm(), "exactpd_sp_", &ksp_sp_);
   for (Vec* v : {&psi_prev_, &psi_newton_}) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
   PetscInt n;
   GF_PETSC(VecGetLocalSize(D_, &n));
@@ -673,14 +667,14 @@ void ExactPlasticStep::solve_saddle(Vec u, int it) {
     GF_PETSC(MatDuplicate(pres_->Z, MAT_COPY_VALUES, &Zk_));
     GF_PETSC(DMCreateGlobalVector(g_.dm_cell(), &zdiag_));
   }
+  Vec rp;  // the psi rows' right-hand side
+  GF_PETSC(DMGetGlobalVector(g_.dm_cell(), &rp));
   {
     const Box& b = g_.box();
     PetscScalar **z, **r;
     const PetscScalar** ps;
     GF_PETSC(DMDAVecGetArray(g_.dm_cell(), zdiag_, &z));
     GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), pres_->psi, &ps));
-    Vec rp;
-    GF_PETSC(DMGetGlobalVector(g_.dm_cell(), &rp));
     GF_PETSC(DMDAVecGetArray(g_.dm_cell(), rp, &r));
     for (PetscInt j = b.ys; j < b.ye(); ++j)
       for (PetscInt i = b.xs; i < b.xe(); ++i) {
@@ -693,7 +687,6 @@ void ExactPlasticStep::solve_saddle(Vec u, int it) {
     GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), pres_->psi, &ps));
     GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), zdiag_, &z));
     GF_PETSC(MatDiagonalSet(Zk_, zdiag_, INSERT_VALUES));
-    psi_rhs_ = rp;
   }
   Mat blocks[4] = {J_, pres_->G, pres_->Dv, Zk_};
   Mat nest;
@@ -713,9 +706,9 @@ void ExactPlasticStep::solve_saddle(Vec u, int it) {
   GF_PETSC(VecCopy(rhs_, sub));
   GF_PETSC(VecRestoreSubVector(R_, rows[0], &sub));
   GF_PETSC(VecGetSubVector(R_, rows[1], &sub));
-  GF_PETSC(VecCopy(psi_rhs_, sub));
+  GF_PETSC(VecCopy(rp, sub));
   GF_PETSC(VecRestoreSubVector(R_, rows[1], &sub));
-  GF_PETSC(DMRestoreGlobalVector(g_.dm_cell(), &psi_rhs_));
+  GF_PETSC(DMRestoreGlobalVector(g_.dm_cell(), &rp));
   GF_PETSC(KSPSetOperators(ksp_sp_, K_, K_));
   GF_PETSC(KSPSolve(ksp_sp_, R_, X_));
   KSPConvergedReason why;

@@ -189,11 +189,8 @@ class ExactPlasticStep {
   std::vector<double> lin_;
   Vec rhs_ = nullptr, u_prev_ = nullptr, u_newton_ = nullptr, S_prev_ = nullptr,
       S_newton_ = nullptr;
-  // The walls (null: none): per face (s0, g) of the last linearisation (two per dm_vel local
-  // entry), the diagonal kappa_b g / h and the right-hand side -kappa_b s0 / h they add, and
-  // the line search's copies of s_t.
-  // The pressure (null: none): the saddle point's nest of blocks, its assembled copy, its
-  // solver and vectors, its row index sets (u, psi), and the line search's copies of psi.
+  // The pressure (null: none): the saddle point's solver, its assembled matrix and vectors,
+  // and the line search's copies of psi.
   const NewtonPressure* pres_ = nullptr;
   KSP ksp_sp_ = nullptr;
   Mat K_ = nullptr;
@@ -202,9 +199,13 @@ class ExactPlasticStep {
   // yield stress); the (2,2) block with 1 / (kappa c_R) there, and the psi rows' rhs.
   std::vector<double> prox_;
   Mat Zk_ = nullptr;
-  Vec zdiag_ = nullptr, psi_rhs_ = nullptr;
-  // One Newton system with the pressure: (J_, G; Dv, Z) (u, psi) = (rhs_, 0). Collective.
+  Vec zdiag_ = nullptr;
+  // One Newton system with the pressure: (J_, G; Dv, Zk_) (u, psi) = (rhs_, Zk_ psi_k), psi_k
+  // the current psi (0 in the pinned cell). Collective.
   void solve_saddle(Vec u, int it);
+  // The walls (null: none): per face (s0, g) of the last linearisation (two per dm_vel local
+  // entry), the diagonal kappa_b g / h and the right-hand side -kappa_b s0 / h they add, and
+  // the line search's copies of s_t.
   const NewtonWalls* walls_ = nullptr;
   Vec c_rigid_ = nullptr;  // dm_cell, s: the rigid cells' step (null: rigid_factor c)
   std::vector<double> linw_;

@@ -178,5 +178,4 @@ void Projector::add_increment(Vec psi, Vec p) const {
   ops::set_pressure_level(g_, p);
 }
 
-
 }  // namespace gf::projection

@@ -45,6 +45,27 @@ struct Result {
 // The channel: 8 x ny cells, periodic in x.
 Grid channel(PetscInt ny) { return Grid(PETSC_COMM_WORLD, 8, ny, 8 * kH / ny, kH, true); }
 
+// The channel's operators and fields: no-slip plates, rho = kRho, eta = kEta (kappa, c, b, S
+// for the caller to set).
+struct ChannelProblem {
+  gf::Boundaries bc;
+  gf::momentum::Predictor pred;
+  Field rho, eta, kap, c, b, S;
+  explicit ChannelProblem(const Grid& g)
+      : bc(no_slip_plates()), pred(g, bc, 1e-12), rho(g.dm_cell(), "rho"),
+        eta(g.dm_cell(), "eta"), kap(g.dm_cell(), "kappa"), c(g.dm_cell(), "c"),
+        b(g.dm_vel(), "b"), S(g.dm_ten(), "S") {
+    VecSet(rho, kRho);
+    VecSet(eta, kEta);
+  }
+  static gf::Boundaries no_slip_plates() {
+    gf::Boundaries bc;
+    bc.bottom.type = gf::WallType::NoSlip;
+    bc.top.type = gf::WallType::NoSlip;
+    return bc;
+  }
+};
+
 // One steady step on g; u_out (optional, a dm_vel Vec of g) gets the velocity.
 // With `pressure`, the Newton step with the pressure in its system (NewtonPressure) and a
 // vertical body force -rho gy besides f; psi_out (a dm_cell Vec of g) gets its psi and S_out
@@ -53,14 +74,8 @@ Result steady(const Grid& g, double kappa, double c_factor, Vec u_out = nullptr,
               bool newton = false, const gf::momentum::ExactStepOptions& opt = {},
               bool pressure = false, double gy = 0, Vec psi_out = nullptr,
               Vec S_out = nullptr) {
-  gf::Boundaries bc;
-  bc.bottom.type = gf::WallType::NoSlip;
-  bc.top.type = gf::WallType::NoSlip;
-  gf::momentum::Predictor pred(g, bc, 1e-12);
-  Field rho(g.dm_cell(), "rho"), eta(g.dm_cell(), "eta"), kap(g.dm_cell(), "kappa"),
-      c(g.dm_cell(), "c"), b(g.dm_vel(), "b"), S(g.dm_ten(), "S");
-  VecSet(rho, kRho);
-  VecSet(eta, kEta);
+  ChannelProblem cp(g);
+  auto& [bc, pred, rho, eta, kap, c, b, S] = cp;
   VecSet(kap, kappa);
   const double h = g.hy();
   VecSet(c, c_factor * (2 * kEta + kRho * kA0dt * h * h) / kappa);
@@ -330,14 +345,8 @@ TEST(ExactPlasticStepNewton, WithThePressureAGradientForceIsAllPressure) {
     const double x = (ii + 0.5) * g.hx(), y = (j + 0.5) * g.hy();
     return std::sin(2 * M_PI * x / Lx) * (1 + y * y) + std::cos(2 * M_PI * x / Lx) * y;
   };
-  gf::Boundaries bc;
-  bc.bottom.type = gf::WallType::NoSlip;
-  bc.top.type = gf::WallType::NoSlip;
-  gf::momentum::Predictor pred(g, bc, 1e-12);
-  Field rho(g.dm_cell(), "rho"), eta(g.dm_cell(), "eta"), kap(g.dm_cell(), "kappa"),
-      c(g.dm_cell(), "c"), b(g.dm_vel(), "b"), S(g.dm_ten(), "S");
-  VecSet(rho, kRho);
-  VecSet(eta, kEta);
+  ChannelProblem cp(g);
+  auto& [bc, pred, rho, eta, kap, c, b, S] = cp;
   VecSet(kap, 0.0);
   VecSet(c, 0.0);
   VecSet(S, 0.0);
