@@ -127,12 +127,6 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
   // MUMPS also on one rank: its factorisation of the Newton matrix (the plastic coupling
   // C M B widens the rows) took 18 ms where PETSc's own took 40 ms (Coulomb block, 120 x 30).
   make_direct_ksp(g.comm(), "exactpd_", &ksp_);
-  // The saddle point's zero (2,2) block makes MUMPS delay pivots beyond its default workspace
-  // (INFOG(1) = -9 on the unit test's 8 x 32 channel at the default 20 %, solved at 100 %):
-  // 200 % unless the user says otherwise.
-  PetscBool ws_set = PETSC_FALSE;
-  GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_sp_mat_mumps_icntl_14", &ws_set));
-  if (!ws_set) GF_PETSC(PetscOptionsSetValue(nullptr, "-exactpd_sp_mat_mumps_icntl_14", "200"));
   make_direct_ksp(g.comm(), "exactpd_sp_", &ksp_sp_);
   for (Vec* v : {&psi_prev_, &psi_newton_}) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
   PetscInt n;
@@ -540,7 +534,17 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
   GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));
   GF_PETSC(KSPSetFromOptions(ksp_));
-  if (pres_) GF_PETSC(KSPSetFromOptions(ksp_sp_));
+  if (pres_) {
+    // The saddle point's zero (2,2) block makes MUMPS delay pivots beyond its default
+    // workspace (INFOG(1) = -9 on the unit test's 8 x 32 channel at the default 20 %, solved at
+    // 100 %): 200 % unless the user says otherwise. Set here, not at construction, so that a
+    // run without the pressure is not warned of an unused option.
+    PetscBool ws_set = PETSC_FALSE;
+    GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_sp_mat_mumps_icntl_14", &ws_set));
+    if (!ws_set)
+      GF_PETSC(PetscOptionsSetValue(nullptr, "-exactpd_sp_mat_mumps_icntl_14", "200"));
+    GF_PETSC(KSPSetFromOptions(ksp_sp_));
+  }
   // The line search's window: the 2-norms of the residual after the last iterations (from the
   // first solve on, and again from each refresh of kappa_b).
   constexpr size_t kWindow = 5;

@@ -88,7 +88,7 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
     w.kappa_b = in.kappa_b;
     w.c_num = c_num_;
     w.s_wall = s.s_wall;
-    w.refresh = [&](Vec D, Vec S, Vec kb) {
+    if (opt_.refresh_kappa_b) w.refresh = [&](Vec D, Vec S, Vec kb) {
       if (coupled()) {  // the pressure at the current iterate, at the level p^{n+1} will have
         // (psi is pinned at a corner cell: without the level, kappa_b would take a constant
         // as large as the corner's pressure).

@@ -3,9 +3,11 @@
 // theta = 0 (rheology.solver = "newton", issue 19): the step's plastic problem
 //   A u~ = rhs0 + div(kappa S) - kappa_b s_t,   S = P(S + c E u~),   s_t = P_b(s_t + c_b u_t)
 // with kappa and the operator A frozen for the step and kappa_b = tan(alpha_b) (-T_n)^+ (eq. 22)
-// refreshed from the current D(u~) and S at every iteration (as the fixed point does), by the
-// primal-dual semismooth Newton method of ExactPlasticStep::solve_newton (one direct solve per
-// iteration). The plastic matrices B, C are assembled once per step (the phase on the Coulomb
+// from the step's start (p^n, S^n, u^n), frozen too: the step is then a convex problem with a
+// unique velocity (rheology.newton_wall_load = "step_start"). With "iterate" kappa_b is
+// refreshed from the current D(u~) and S (as the fixed point does; ExactStepOptions::
+// refresh_kappa_b). Solved by the primal-dual semismooth Newton method of
+// ExactPlasticStep::solve_newton (one direct solve per iteration). The plastic matrices B, C are assembled once per step (the phase on the Coulomb
 // walls changes). c = r kappa and c_b = r_b kappa_b are the fixed point's augmentations
 // (rheology.r_factor); the converged step does not depend on them (theta = 0: the rigid zones
 // are rigid, not elastic). Not with the node copy of S, the side walls or the gate.
@@ -34,12 +36,13 @@ class NewtonPlastic {
   NewtonPlastic& operator=(const NewtonPlastic&) = delete;
 
   // Solves the step's problem for u~ (in: the initial guess; out: the prediction) and s.S,
-  // s.s_wall (in: S^n, s_t^n as the start; out: the step's), with in.kappa_b refreshed.
+  // s.s_wall (in: S^n, s_t^n as the start; out: the step's); in.kappa_b is refreshed with
+  // ExactStepOptions::refresh_kappa_b, used as it is otherwise.
   // rhs0: Predictor::explicit_rhs; A: the assembled operator of pred; a0dt = a0/dt (1/s).
   // Stats as the fixed point's: iters = the Newton iterations, change = the last residual.
   // Collective.
-  // With the pressure, the Coulomb walls' kappa_b is refreshed from p^n + psi (the step's
-  // pressure), not p^n.
+  // With the pressure and refresh_kappa_b, the Coulomb walls' kappa_b is refreshed from
+  // p^n + psi (the step's pressure), not p^n.
   FixedPointStats solve(State& s, const PlasticInputs& in, Vec rhs0, Vec u_tilde, double a0dt);
   bool coupled() const { return pres_.psi != nullptr; }
   // The last solve's p^{n+1} - p^n up to a constant (dm_cell, Pa); null unless coupled.

@@ -104,6 +104,7 @@ CaseConfig fill(const Params& p) {
   rh.fp_monitor = p.get_bool("rheology.fp_monitor");
   rh.newton = p.get_string("rheology.solver") == "newton";
   rh.newton_coupled = p.get_string("rheology.newton_pressure") == "coupled";
+  rh.newton_wall_iterate = p.get_string("rheology.newton_wall_load") == "iterate";
   rh.newton_tol = p.get_real("rheology.newton_tol");
   rh.newton_max_iter = static_cast<int>(p.get_int("rheology.newton_max_iter"));
 

@@ -131,6 +131,7 @@ struct CaseConfig {
     bool fp_monitor = false;      // a log line per fixed-point iteration
     bool newton = false;          // rheology.solver = "newton": theta = 0, solved exactly
     bool newton_coupled = false;  // rheology.newton_pressure = "coupled"
+    bool newton_wall_iterate = false;  // rheology.newton_wall_load = "iterate"
     double newton_tol = 0;        // -, on max |S - P(S + r kappa D)| and the walls'
     int newton_max_iter = 0;
     // mu_s = tan(alpha).

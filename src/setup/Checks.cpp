@@ -504,7 +504,8 @@ void CaseChecks::rheology() {
       if (rh.yield == Yield::None)
         for (const char* k : {"rheology.r_factor", "rheology.theta_per_dt", "rheology.fp_tol",
                               "rheology.plastic_grid", "rheology.yield_support",
-                              "rheology.fp_max_iter", "rheology.newton_pressure"})
+                              "rheology.fp_max_iter", "rheology.newton_pressure",
+                              "rheology.newton_wall_load"})
           unused_keys.push_back({k, y + " (no plastic fixed point)"});
       if (rh.newton)
         for (const char* k : {"rheology.theta_per_dt", "rheology.fp_tol", "rheology.fp_tol_u",
@@ -513,7 +514,7 @@ void CaseChecks::rheology() {
           unused_keys.push_back({k, "rheology.solver = newton (theta = 0, no fixed point)"});
       else
         for (const char* k : {"rheology.newton_tol", "rheology.newton_max_iter",
-                              "rheology.newton_pressure"})
+                              "rheology.newton_pressure", "rheology.newton_wall_load"})
           unused_keys.push_back({k, "rheology.solver = fixed_point"});
       for (const auto& [k, why] : unused_keys)
         if (p.is_set(k)) c.warnings.push_back(k + " is set but " + why + " does not use it");

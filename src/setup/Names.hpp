@@ -27,6 +27,7 @@ inline const std::vector<std::string> kYields{"none", "bingham", "dp", "hp"};
 inline const std::vector<std::string> kPlasticGrids{"cell", "cell_node"};
 inline const std::vector<std::string> kPlasticSolvers{"fixed_point", "newton"};
 inline const std::vector<std::string> kNewtonPressures{"coupled", "projection"};
+inline const std::vector<std::string> kNewtonWallLoads{"iterate", "step_start"};
 inline const std::vector<std::string> kYieldSupports{"phase", "mass"};
 inline const std::vector<std::string> kRedistanceWalls{"drop", "extrapolate"};
 inline const std::vector<std::string> kViscosities{"constant", "mu_i"};

@@ -102,6 +102,9 @@ std::string rheology_text(const CaseConfig& c, double dt) {
        << g4(rh.r_factor) << " (does not change the answer); "
        << (rh.newton_coupled ? "with the pressure in the same system (newton_pressure = coupled)"
                              : "then the projection of eq. 32 (newton_pressure = projection)")
+       << "; wall load "
+       << (rh.newton_wall_iterate ? "from the iterate (newton_wall_load = iterate)"
+                                  : "from the step's start (newton_wall_load = step_start)")
        << "\n";
   } else if (rh.yield != Yield::None) {
     const double theta = rh.theta_per_dt * dt;

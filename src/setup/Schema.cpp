@@ -149,7 +149,15 @@ void declare_physics(Params& p) {
              "eq. 32 (which can set a rigid zone moving again: a held block or pile moves in "
              "its first steps); coupled = the pressure in the same Newton system (eqs. 31 and "
              "32 solved together: divergence-free and at rest from the first step, but on a "
-             "collapse such as case A every step reaches newton_max_iter; docs/RHEOLOGY.md).");
+             "collapse such as case A many steps reach newton_max_iter and the rigid zones' "
+             "pressure is not unique; docs/RHEOLOGY.md).");
+  p.add_enum("rheology.newton_wall_load", "step_start", kNewtonWallLoads,
+             "rheology.solver = newton: the normal load of the Coulomb walls' friction "
+             "kappa_b = tan(alpha_b) (-T_n)^+ (eq. 22): step_start = from p^n, S^n and u^n, "
+             "frozen for the step as kappa is, so that the step's velocity is unique; iterate "
+             "= refreshed from the Newton iterate's S and D(u~) (the paper's kappa_b^{n+1}: "
+             "in a rigid zone S is not unique, and on case A 36 % of the steps then reach "
+             "newton_max_iter; docs/RHEOLOGY.md).");
   p.add_real("rheology.newton_tol", "", 1e-6, Range::gt(0),
              "rheology.solver = newton: stop when max |S - P(S + r kappa D)| over the cells and "
              "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this.");
