@@ -336,8 +336,11 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   const Box& b = g_.box();
   GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
   double wl2 = 0, wmax = 0;
+  const size_t ncell = static_cast<size_t>(b.xm) * b.ym;
+  if (active_.size() != 3 * ncell) active_.assign(3 * ncell, 0);  // the cells, then their faces
+  double wchanges = 0;
   if (walls_) {
-    wmax = linearise_walls(u, opt, wl2);
+    wmax = linearise_walls(u, opt, wl2, wchanges);
   }
   const PetscScalar ***d, ***d0, ***lam, **k, **c, **cr = nullptr;
   PetscScalar*** t;
@@ -351,6 +354,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   PetscInt r0;
   GF_PETSC(VecGetOwnershipRange(D_, &r0, nullptr));
   lin_.assign(static_cast<size_t>(b.xm) * b.ym * 5, 0.0);
+  double changes = 0;
   if (pres_) prox_.assign(static_cast<size_t>(b.xm) * b.ym, 0.0);
   double loc[2] = {wmax, wl2};  // max and sum of squares of |S - P(S + c E u)| (and walls')
   for (PetscInt j = b.ys; j < b.ye(); ++j)
@@ -370,6 +374,9 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
         const double r = std::hypot(std::hypot(s[0] - f * q[0], s[1] - f * q[1]), dv);
         loc[0] = std::max(loc[0], r);
         loc[1] += r * r;
+        const signed char cls = nq <= 1 ? 1 : 2;
+        if (active_[cell] != 0 && active_[cell] != cls) ++changes;
+        active_[cell] = cls;
         if (nq <= 1) {  // rigid: E u = 0 in its augmented form, step rigid_factor c
           G[0][0] = G[1][1] = cr ? cr[j][i] : opt.rigid_factor * cc;
           if (pres_) prox_[cell] = kk * G[0][0];
@@ -409,6 +416,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   if (cr) GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), c_rigid_, &cr));
   GF_PETSC(MatAssemblyBegin(M_, MAT_FINAL_ASSEMBLY));
   GF_PETSC(MatAssemblyEnd(M_, MAT_FINAL_ASSEMBLY));
+  active_changes_ = g_.sum(changes + wchanges);
   return {g_.max(loc[0]), std::sqrt(g_.sum(loc[1]))};
 }
 
@@ -435,7 +443,8 @@ void ExactPlasticStep::for_wall_faces(F&& f) const {
 
 // The walls' part of linearise: linw_, wdiag_, wrhs_; returns the local max of |s_t -
 // P_b(s_t + c_b u_t)| and adds its squares to l2.
-double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, double& l2) {
+double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, double& l2,
+                                         double& changes) {
   const Box& b = g_.box();
   GF_PETSC(VecSet(wdiag_, 0.0));
   GF_PETSC(VecSet(wrhs_, 0.0));
@@ -458,6 +467,9 @@ double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, dou
     mx = std::max(mx, r);
     l2 += r * r;
     const bool stick = std::abs(qq) <= 1;
+    signed char& cls = active_[static_cast<size_t>(b.xm) * b.ym + f];
+    if (cls != 0 && cls != (stick ? 1 : 2)) ++changes;
+    cls = stick ? 1 : 2;
     const double s0 = stick ? sw[f] : (qq > 0 ? 1.0 : -1.0);
     const double gg = stick ? opt.wall_rigid_factor * cb : 0.0;
     linw_[2 * f] = s0;
@@ -521,6 +533,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   kappa_ = kappa;
   c_ = c;
   GF_PETSC(VecCopy(S, lambda_));
+  std::fill(active_.begin(), active_.end(), 0);  // no class yet: the first linearisation sets it
   MatDestroy(&CMB_);
   MatDestroy(&J_);
   ExactStepStats st;
@@ -617,7 +630,9 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     newton_update(u);
     st.outer = st.newton = it + 1;
     res = linearise(u, opt);
-    if (!window.empty()) {
+    // With the active sets unchanged by the Newton point, the full step is taken: there the
+    // iteration is Newton's on a smooth system (see the header).
+    if (!window.empty() && active_changes_ > 0) {
       // Non-monotone backtracking (Grippo, Lampariello & Lucidi 1986) on the 2-norm of the
       // projection's residual, against the largest of the last kWindow values, between the
       // last iterate and the Newton point: both satisfy the momentum equation, which is linear

@@ -53,7 +53,9 @@ struct ExactStepOptions {
   double inner_rtol = 1e-12;  // Newton: relative reduction of |F|
   // solve_newton: the floor of |q| - 1 in a yielded cell's tangential stiffness
   // gamma = c / max(|q| - 1, gap_floor) (dimensionless; any gamma >= 0 has the exact fixed
-  // point, the floor only bounds the stiffness of a cell at the yield limit).
+  // point, the floor only bounds the stiffness of a cell at the yield limit). A cell just past
+  // the limit (|q| - 1 below the floor) then converges linearly, by about (|q| - 1) / gap_floor
+  // per iteration; NewtonPlastic uses 1e-9 without the pressure (see there).
   double gap_floor = 1e-3;
   // solve_newton: the step length of the rigid cells' augmented update, in units of c
   // (dimensionless; the fixed point does not depend on it). Large: the update is close to
@@ -155,9 +157,12 @@ class ExactPlasticStep {
   // G_k, S0_k the cell's (gamma_k (I - n n^T), n_k) or (c_R I, S_k). Every fixed point of this
   // iteration is the exact solution, whatever gamma >= 0 and c_R > 0: E u = 0 in the rigid
   // cells, and in the yielded ones S = n, which makes S parallel to E u. From the second
-  // iteration on, the step is halved until the 2-norm of |S - P(S + c E u)| over the cells
-  // decreases (all the points between two iterates satisfy the momentum equation, linear in
-  // (u, S)). Stops when max |S - P(S + c E u)| <= tol over the cells (the criterion of
+  // iteration on, when the Newton point has changed the active sets (a cell rigid <-> yielded,
+  // a wall face sticking <-> sliding), the step is halved until the 2-norm of
+  // |S - P(S + c E u)| over the cells decreases (all the points between two iterates satisfy
+  // the momentum equation, linear in (u, S)); with the same active sets the full step is taken
+  // (on case A at n = 16 the halvings then slowed the bottom row's cells at the yield limit to
+  // a linear tail: 17 capped steps of 300 with them, 10 without). Stops when max |S - P(S + c E u)| <= tol over the cells (the criterion of
   // solve()). Linear solves: KSP prefix -exactpd_, default a direct solve (MUMPS LU);
   // -exactpd_monitor prints the residual of every iteration.
   //
@@ -223,7 +228,7 @@ class ExactPlasticStep {
   // Calls f(i, j, q, h) for the local wall faces of the Coulomb storage: q = 0 (u, bottom and
   // top rows) or 1 (v, left and right columns), h the spacing normal to the wall.
   template <class F> void for_wall_faces(F&& f) const;
-  double linearise_walls(Vec u, const ExactStepOptions& opt, double& l2);
+  double linearise_walls(Vec u, const ExactStepOptions& opt, double& l2, double& changes);
   void newton_update_walls(Vec u);
   struct Residual {
     double max, l2;  // of |lambda - P(lambda + c E u)| over the cells
@@ -231,6 +236,10 @@ class ExactPlasticStep {
   // Linearises at (u, lambda_): M_ = Pi kappa G L, T_ = Pi kappa (S0 + G L d0), lin_; returns
   // the residual there. Collective.
   Residual linearise(Vec u, const ExactStepOptions& opt);
+  // Per local cell and wall face, the class of the last linearisation (0 none, 1 rigid or
+  // sticking, 2 yielded or sliding), and how many changed class in it (all ranks).
+  std::vector<signed char> active_;
+  double active_changes_ = 0;
   // lambda_ = S0 + G L (B u + d0) from lin_.
   void newton_update(Vec u);
   static PetscErrorCode residual(SNES, Vec u, Vec F, void* ctx);

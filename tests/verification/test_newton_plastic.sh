@@ -46,10 +46,11 @@
 #     the step's start (the default): rheology.r_factor / 4 and rheology.newton_tol x 4 move its
 #     runout, furthest front, back-wall height and peak granular pressure by at most 1e-4
 #     relative, and its stage times not at all (issue 19's knob criterion, at a coarse grid).
-#     Measured to 1.06 s: at most 2.4e-5 (the peak pressure; the others below 1e-6), 26 of 1060
-#     steps capped. With the load refreshed from the iterate 384 steps were capped and the tolerance
-#     moved the peak pressure by 2.4e-4. At n = 8 the peak pressure moves by 2.5e-4 (r / 4) and
-#     1.4e-4 (tol x 4): the deposit's pressure follows its rigid zones' S, which is not unique.
+#     Measured to 1.06 s (docs/newton_knobs.md): at most 7.0e-6, 9 of 1060 steps capped; in the
+#     suite's 0.6 s 3.2e-6 and 6.6e-6. With the load refreshed from the iterate 322 steps were
+#     capped and the tolerance moved the peak pressure by 2.4e-4. At n = 8 the peak pressure
+#     moved by 2.5e-4 (r / 4, before this session's line-search change): the deposit's pressure
+#     follows its rigid zones' S, which is not unique.
 # Usage: bash test_newton_plastic.sh <granflow binary> <source dir>
 set -euo pipefail
 bin="$1"; src="$2"

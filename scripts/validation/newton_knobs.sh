@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Issue 19's knob criterion for the exact plastic solver (rheology.solver = newton): case A and
+# case B at a coarse grid with r_factor and newton_tol each 4 times smaller and larger, and the
+# fixed point with r_factor / 4 beside them. Writes docs/newton_knobs.md.
+# Usage: scripts/validation/newton_knobs.sh [n_A] [n_B]   (defaults 16 16; 2 runs at a time;
+# about 8 minutes at 16 on this 2-core machine).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+"$root/scripts/build.sh" > /dev/null
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+na="${1:-16}"; nb="${2:-16}"
+out="$root/runs/newton_knobs"
+mkdir -p "$out"
+bin="$root/build/granflow"
+job() {  # job <name> <args...>: at most two at a time
+  while (( $(jobs -rp | wc -l) >= 2 )); do wait -n; done
+  local name="$1"; shift
+  "$bin" run "$@" --out "$out/$name" --overwrite > "$out/$name.log" 2>&1 &
+}
+for c in a b; do
+  if [[ $c == a ]]; then f=cases/ar07_rough.toml; n=$na; else f=cases/ar2_smooth.toml; n=$nb; fi
+  A=("$root/$f" --set grid.n=$n --set output.vtk_interval=0)
+  N=("${A[@]}" --set rheology.solver=newton)
+  job ${c}_newton "${N[@]}"
+  job ${c}_newton_r_div4 "${N[@]}" --set rheology.r_factor=0.125
+  job ${c}_newton_r_x4 "${N[@]}" --set rheology.r_factor=2
+  job ${c}_newton_tol_div4 "${N[@]}" --set rheology.newton_tol=2.5e-7
+  job ${c}_newton_tol_x4 "${N[@]}" --set rheology.newton_tol=4e-6
+  job ${c}_newton_iterate "${N[@]}" --set rheology.newton_wall_load=iterate
+  job ${c}_fp "${A[@]}"
+  job ${c}_fp_r_div4 "${A[@]}" --set rheology.r_factor=0.125
+done
+wait
+/usr/bin/python3 "$root/scripts/validation/newton_knobs.py" "$out" "$root/docs/newton_knobs.md" \
+  "scripts/validation/newton_knobs.sh $na $nb" "$na" "$nb"
