@@ -3,6 +3,7 @@
 #include "momentum/ExactPlasticStep.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <string>
 
@@ -378,7 +379,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
         if (active_[cell] != 0 && active_[cell] != cls) ++changes;
         active_[cell] = cls;
         if (nq <= 1) {  // rigid: E u = 0 in its augmented form, step rigid_factor c
-          G[0][0] = G[1][1] = cr ? cr[j][i] : opt.rigid_factor * cc;
+          G[0][0] = G[1][1] = boost_ * (cr ? cr[j][i] : opt.rigid_factor * cc);
           if (pres_) prox_[cell] = kk * G[0][0];
           s0[0] = s[0];
           s0[1] = s[1];
@@ -471,7 +472,7 @@ double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, dou
     if (cls != 0 && cls != (stick ? 1 : 2)) ++changes;
     cls = stick ? 1 : 2;
     const double s0 = stick ? sw[f] : (qq > 0 ? 1.0 : -1.0);
-    const double gg = stick ? opt.wall_rigid_factor * cb : 0.0;
+    const double gg = stick ? boost_ * opt.wall_rigid_factor * cb : 0.0;
     linw_[2 * f] = s0;
     linw_[2 * f + 1] = gg;
     wd[f] = kb[f] * gg / h;
@@ -534,6 +535,8 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   c_ = c;
   GF_PETSC(VecCopy(S, lambda_));
   std::fill(active_.begin(), active_.end(), 0);  // no class yet: the first linearisation sets it
+  boost_ = 1;
+  int calm = 0;  // iterations since the active sets last changed
   MatDestroy(&CMB_);
   MatDestroy(&J_);
   ExactStepStats st;
@@ -657,6 +660,19 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       }
     }
     window.push_back(res.l2);
+    // Once the active sets have stayed the same for two iterations, what is left is the
+    // proximal drift of the rigid cells' S and the sticking faces' s_t (not unique there): their
+    // steps grow tenfold per iteration up to rigid_boost_max, towards Newton's own E u = 0 and
+    // u_t = 0; back to 1 as soon as the active sets change (a large step from the start slows
+    // the active-set search: rigid_factor 1e5 instead of 1e4 capped more steps, not fewer).
+    calm = active_changes_ > 0 ? 0 : calm + 1;
+    if (calm >= 2 && boost_ < opt.rigid_boost_max) {
+      boost_ = std::min(boost_ * 10, opt.rigid_boost_max);
+      res = linearise(u, opt);  // the same point, the longer steps
+    } else if (calm == 0 && boost_ > 1) {
+      boost_ = 1;
+      res = linearise(u, opt);
+    }
     if (window.size() > kWindow) window.erase(window.begin());
     GF_PETSC(VecCopy(u, u_prev_));
     GF_PETSC(VecCopy(lambda_, S_prev_));
