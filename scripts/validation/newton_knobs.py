@@ -32,6 +32,12 @@ for c, label, n in (("a", "Case A (`cases/ar07_rough.toml`)", na), ("b", "Case B
               "|---|---|---|---|---|---|---|---|---|---|---|"]
     ref = {"newton": load(f"{c}_newton"), "fp": load(f"{c}_fp")}
     for key, name in ROWS:
+        if os.path.exists(os.path.join(out, f"{c}_{key}.failed")):
+            with open(os.path.join(out, f"{c}_{key}.log")) as f:
+                why = [l.strip() for l in f if "failed" in l][-1:]
+            lines.append(f"| {name} | **failed**: {why[0] if why else 'see its log'} "
+                         "| | | | | | | | | |")
+            continue
         s = load(f"{c}_{key}")
         r = ref["fp" if key.startswith("fp") else "newton"]
         mv = max(abs(s[k] / r[k] - 1) for k in FIG)

@@ -15,7 +15,9 @@ bin="$root/build/granflow"
 job() {  # job <name> <args...>: at most two at a time
   while (( $(jobs -rp | wc -l) >= 2 )); do wait -n; done
   local name="$1"; shift
-  "$bin" run "$@" --out "$out/$name" --overwrite > "$out/$name.log" 2>&1 &
+  rm -f "$out/$name.failed"
+  { "$bin" run "$@" --out "$out/$name" --overwrite > "$out/$name.log" 2>&1 ||
+      touch "$out/$name.failed"; } &
 }
 for c in a b; do
   if [[ $c == a ]]; then f=cases/ar07_rough.toml; n=$na; else f=cases/ar2_smooth.toml; n=$nb; fi

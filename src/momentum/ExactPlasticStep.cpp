@@ -600,6 +600,8 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
         st.converged = true;
         break;
       }
+      boost_ = 1;  // a new problem: its active sets are searched again with the plain steps
+      calm = 0;
       res = linearise(u, opt);  // the same (u, S) with the new kappa_b
       // The new kappa_b changes the wall tractions, so (u, S) no longer satisfies the momentum
       // equation: like the start, the next step is taken whole.
