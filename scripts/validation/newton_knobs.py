@@ -1,8 +1,10 @@
 """Writes the table of scripts/validation/newton_knobs.sh from its runs' summary.json files."""
 import datetime
-import json
 import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import granflow_run as gr  # noqa: E402
 
 out, md, cmd, na, nb = sys.argv[1:6]
 FIG = ("runout_m", "max_front_x_m", "backwall_height_m", "max_p_granular_ratio")
@@ -15,8 +17,7 @@ ROWS = [("newton", "newton, defaults (r_factor 0.5, newton_tol 1e-6, wall load s
 
 
 def load(name):
-    with open(os.path.join(out, name, "summary.json")) as f:
-        return json.load(f)
+    return gr.Run(os.path.join(out, name)).summary
 
 
 lines = ["# The exact plastic solver's answer against its knobs (issue 19)", "",

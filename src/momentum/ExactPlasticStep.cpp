@@ -3,7 +3,6 @@
 #include "momentum/ExactPlasticStep.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <string>
 

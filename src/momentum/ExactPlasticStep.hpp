@@ -156,8 +156,9 @@ class ExactPlasticStep {
   //   yielded (|q_k| > 1):  S_{k+1} = n_k + gamma_k (I - n_k n_k^T) E u_{k+1},
   //                         n_k = q_k / |q_k|, gamma_k = c / (|q_k| - 1)  (exact Newton),
   //   rigid   (|q_k| <= 1): E u_{k+1} = 0, taken as S_{k+1} = S_k + c_R E u_{k+1} with
-  //                         c_R = rigid_factor c (or the cell's c_rigid): the saddle point of Newton's step with a
-  //                         (2,2) block -I/c_R, which is not singular where a rigid zone's
+  //                         c_R = rigid_factor c (or the cell's c_rigid): the saddle point
+  //                         of Newton's step with a (2,2) block -I/c_R, which is not
+  //                         singular where a rigid zone's
   //                         multiplier is not unique, and is Newton's step as c_R -> infinity,
   // so that u_{k+1} solves (A - C Pi kappa G_k L B) u = b + C Pi kappa (S0_k + G_k L d0) with
   // G_k, S0_k the cell's (gamma_k (I - n n^T), n_k) or (c_R I, S_k). Every fixed point of this
@@ -168,9 +169,11 @@ class ExactPlasticStep {
   // |S - P(S + c E u)| over the cells decreases (all the points between two iterates satisfy
   // the momentum equation, linear in (u, S)); with the same active sets the full step is taken
   // (on case A at n = 16 the halvings then slowed the bottom row's cells at the yield limit to
-  // a linear tail: 17 capped steps of 300 with them, 10 without). Stops when max |S - P(S + c E u)| <= tol over the cells (the criterion of
-  // solve()). Linear solves: KSP prefix -exactpd_, default a direct solve (MUMPS LU);
-  // -exactpd_monitor prints the residual of every iteration.
+  // a linear tail: 17 capped steps of 300 with them, 10 without). Once the active sets have
+  // stayed the same for two iterations, c_R grows tenfold per iteration up to rigid_boost_max
+  // times its value (ExactStepOptions::rigid_boost_max). Stops when max |S - P(S + c E u)| <=
+  // tol over the cells (the criterion of solve()). Linear solves: KSP prefix -exactpd_,
+  // default a direct solve (MUMPS LU); -exactpd_monitor prints the residual of every iteration.
   //
   // With `pressure` (NewtonPressure), each iteration solves the saddle point with the pressure
   // instead (solve_saddle), and a rigid cell's incompressibility is taken in the same augmented
@@ -184,9 +187,10 @@ class ExactPlasticStep {
   // 64 cells across, rigid_factor 1e4): 2-3 Newton iterations for the plug (|u| 1.2e-12 m/s),
   // 4-6 for the Bingham Poiseuille profile at every grid (second order: 1.09e-2, 2.71e-3,
   // 6.78e-4, and 1.70e-4 at 128 cells), no backtracking; where the method of multipliers takes
-  // 33 to 130 updates, and does not converge in 200 at 64 cells. With c_R = c the rigid cells' step is the multipliers' (an
-  // Uzawa step) and the iteration cycles at c factor 10 (residual 2: a yielded cell's
-  // direction flips); the line search then makes it converge, but linearly (ratio 0.9).
+  // 33 to 130 updates, and does not converge in 200 at 64 cells. With c_R = c the rigid
+  // cells' step is the multipliers' (an Uzawa step) and the iteration cycles at c factor 10
+  // (residual 2: a yielded cell's direction flips); the line search then makes it converge,
+  // but linearly (ratio 0.9).
   ExactStepStats solve_newton(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c, Vec u,
                               Vec S, const ExactStepOptions& opt = {},
                               const NewtonWalls* walls = nullptr, Vec c_rigid = nullptr,

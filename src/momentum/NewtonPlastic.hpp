@@ -7,8 +7,8 @@
 // unique velocity (rheology.newton_wall_load = "step_start"). With "iterate" kappa_b is
 // refreshed from the current D(u~) and S (as the fixed point does; ExactStepOptions::
 // refresh_kappa_b). Solved by the primal-dual semismooth Newton method of
-// ExactPlasticStep::solve_newton (one direct solve per iteration). The plastic matrices B, C are assembled once per step (the phase on the Coulomb
-// walls changes). c = r kappa and c_b = r_b kappa_b are the fixed point's augmentations
+// ExactPlasticStep::solve_newton (one direct solve per iteration). The plastic matrices B, C
+// are assembled once per step (the phase on the Coulomb walls changes). c = r kappa and c_b = r_b kappa_b are the fixed point's augmentations
 // (rheology.r_factor); the converged step does not depend on them (theta = 0: the rigid zones
 // are rigid, not elastic). Not with the node copy of S, the side walls or the gate.
 #include <petscvec.h>

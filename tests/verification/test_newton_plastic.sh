@@ -5,16 +5,16 @@
 # settings otherwise (no equilibrium start, the default yield support and interface):
 #  1. theta = 30 deg: the block slides with a = g (sin theta - tan alpha_b cos theta) = 1.8128
 #     m/s^2 (least-squares slope of the mean granular velocity over [0.02, 0.1] s): within 1 %,
-#     with no capped step. Measured: -0.35 %, 5-10 Newton iterations in the output steps.
+#     with no capped step. Measured: -0.44 %, 2-5 Newton iterations in the output steps.
 #  2. theta = 15 deg < alpha_b: the block holds. The first steps move it (the start's pressure
 #     is not the block's, and the projection that follows the exact plastic step corrects the
 #     velocity: the split of eqs. 31-32), then it comes to rest: over [0.06, 0.1] s the mean
 #     granular speed stays below 1e-8 m/s and at t = 0.1 s the largest granular speed is below
-#     1e-6 m/s. Measured: mean 2.5e-9 m/s at most, largest 2.0e-7 m/s, 1 step capped
-#     (residual 2.7e-6). With the walls' load refreshed from the iterate (newton_wall_load =
-#     "iterate"), 7 steps capped with residuals below newton_tol but kappa_b still changing: the
-#     wall traction of a held block and its internal stress are not unique, and kappa_b, which
-#     includes kappa S_nn (eq. 22), drifts with them. The paper's fixed point on the same run creeps at up to
+#     1e-6 m/s. Measured: mean 2.6e-9 m/s at most, largest 2.0e-7 m/s, no step capped. With
+#     the walls' load refreshed from the iterate (newton_wall_load = "iterate"), 7 steps capped
+#     with residuals below newton_tol but kappa_b still changing: the wall traction of a held
+#     block and its internal stress are not unique, and kappa_b, which includes kappa S_nn
+#     (eq. 22), drifts with them. The paper's fixed point on the same run creeps at up to
 #     6.6e-4 m/s, 74 steps capped (printed for comparison, not required).
 #  3. The Drucker-Prager pile of cases/verify/dp_pile.toml (n = 32) with 20 deg slopes (friction
 #     25.5 deg), from zero stress, with the default yield support, to 0.1 s, with the walls'
@@ -40,7 +40,7 @@
 #  6. The knobs, on that cessation with the pressure: rheology.r_factor and rheology.newton_tol
 #     each 4 times their default do not move KE(0.3 s) by more than 1e-6 relative nor the stop
 #     time T_f (where sqrt(KE) extrapolated from 0.34 and 0.345 s reaches zero) by more than
-#     1e-4 s. Measured: 3.4e-9 and 4.1e-8; T_f = 0.34816 s in all three (and with r_factor / 4,
+#     1e-4 s. Measured: 2.0e-9 and 4.0e-8; T_f = 0.34816 s in all three (and with r_factor / 4,
 #     newton_tol / 4: 4.4e-9, 3.9e-9).
 #  7. Case A (cases/ar07_rough.toml) at n = 16 to 0.6 s (past its stop), the walls' load from
 #     the step's start (the default): every step converges (none ends at newton_max_iter), and
