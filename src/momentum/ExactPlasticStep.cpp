@@ -146,6 +146,7 @@ ExactPlasticStep::~ExactPlasticStep() {
                  &sw_newton_, &kb_old_})
     VecDestroy(v);
   MatDestroy(&J_);
+  MatDestroy(&AJ_);
   MatDestroy(&CMB_);
   MatDestroy(&M_);
   VecDestroy(&lambda_);
@@ -221,13 +222,26 @@ PetscErrorCode ExactPlasticStep::jacobian(SNES, Vec u, Mat J, Mat, void* ctx) {
     self->plastic_stress(u, self->T_, true);
     GF_PETSC(MatMatMatMult(self->m_->C, self->M_, self->m_->B, MAT_REUSE_MATRIX, PETSC_DEFAULT,
                            &self->CMB_));
-    GF_PETSC(MatZeroEntries(J));
-    GF_PETSC(MatAXPY(J, 1.0, self->A_, SUBSET_NONZERO_PATTERN));
-    GF_PETSC(MatAXPY(J, -1.0, self->CMB_, SUBSET_NONZERO_PATTERN));
+    self->fill_jacobian();  // J is J_
   } catch (const std::exception&) {
     return PETSC_ERR_LIB;
   }
   return 0;
+}
+
+void ExactPlasticStep::jacobian_pattern(Mat A) {
+  MatDestroy(&CMB_);
+  MatDestroy(&J_);
+  MatDestroy(&AJ_);
+  GF_PETSC(MatMatMatMult(m_->C, M_, m_->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CMB_));
+  GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
+  GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));  // A in the union of the patterns
+  GF_PETSC(MatDuplicate(J_, MAT_COPY_VALUES, &AJ_));
+}
+
+void ExactPlasticStep::fill_jacobian() {
+  GF_PETSC(MatCopy(AJ_, J_, SAME_NONZERO_PATTERN));
+  GF_PETSC(MatAXPY(J_, -1.0, CMB_, SUBSET_NONZERO_PATTERN));
 }
 
 ExactStepStats ExactPlasticStep::solve(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c,
@@ -239,12 +253,8 @@ ExactStepStats ExactPlasticStep::solve(Mat A, Vec b, const PlasticMatrices& m, V
   c_ = c;
   GF_PETSC(VecCopy(S, lambda_));
   // The Jacobian's pattern: A's and that of C M B with every 3 x 3 block of M full.
-  MatDestroy(&CMB_);
-  MatDestroy(&J_);
   plastic_stress(u, T_, true);
-  GF_PETSC(MatMatMatMult(m.C, M_, m.B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CMB_));
-  GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
-  GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));
+  jacobian_pattern(A);
   Vec F;
   GF_PETSC(VecDuplicate(u, &F));
   GF_PETSC(SNESSetFunction(snes_, F, &ExactPlasticStep::residual, this));
@@ -536,18 +546,13 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   std::fill(active_.begin(), active_.end(), 0);  // no class yet: the first linearisation sets it
   boost_ = 1;
   int calm = 0;  // iterations since the active sets last changed
-  MatDestroy(&CMB_);
-  MatDestroy(&J_);
   ExactStepStats st;
   if (walls_ && walls_->refresh) {  // kappa_b of the start
     GF_PETSC(MatMultAdd(m.B, u, m.d0, D_));
     walls_->refresh(D_, lambda_, walls_->kappa_b);
   }
   Residual res = linearise(u, opt);
-  // The pattern of J = A - C M B with every 3 x 3 block of M full (linearise sets them all).
-  GF_PETSC(MatMatMatMult(m.C, M_, m.B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CMB_));
-  GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
-  GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));
+  jacobian_pattern(A);  // every 3 x 3 block of M is full: linearise sets them all
   GF_PETSC(KSPSetFromOptions(ksp_));
   if (pres_) {
     // The saddle point's zero (2,2) block makes MUMPS delay pivots beyond its default
@@ -610,9 +615,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     }
     if (it == opt.max_outer) break;
     if (it > 0) GF_PETSC(MatMatMatMult(m.C, M_, m.B, MAT_REUSE_MATRIX, PETSC_DEFAULT, &CMB_));
-    GF_PETSC(MatZeroEntries(J_));
-    GF_PETSC(MatAXPY(J_, 1.0, A, SUBSET_NONZERO_PATTERN));
-    GF_PETSC(MatAXPY(J_, -1.0, CMB_, SUBSET_NONZERO_PATTERN));
+    fill_jacobian();
     GF_PETSC(MatMult(m.C, T_, rhs_));
     GF_PETSC(VecAYPX(rhs_, 1.0, b));
     if (walls_) {
