@@ -7,6 +7,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import granflow_run as gr  # noqa: E402
 
 out, md, cmd, na, nb = sys.argv[1:6]
+only = set(sys.argv[6:])  # the runs made (empty: all)
 FIG = ("runout_m", "max_front_x_m", "backwall_height_m", "max_p_granular_ratio")
 TIMES = ("t1_s", "t2_s", "t3_s", "tf_s")
 ROWS = [("newton", "newton, defaults (r_factor 0.5, newton_tol 1e-6, wall load step_start)"),
@@ -31,8 +32,12 @@ for c, label, n in (("a", "Case A (`cases/ar07_rough.toml`)", na), ("b", "Case B
               "| run | runout (m) | furthest front (m) | back wall (m) | t1, t2, t3, tf (s) | max p / rho_s g H_c "
               "| moves by | stage times | capped steps | iterations | wall s |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]
-    ref = {"newton": load(f"{c}_newton"), "fp": load(f"{c}_fp")}
-    for key, name in ROWS:
+    made = [(key, name) for key, name in ROWS if not only or f"{c}_{key}" in only]
+    if not made:
+        lines = lines[:-4]
+        continue
+    ref = {k: load(f"{c}_{k}") for k in ("newton", "fp") if not only or f"{c}_{k}" in only}
+    for key, name in made:
         if os.path.exists(os.path.join(out, f"{c}_{key}.failed")):
             with open(os.path.join(out, f"{c}_{key}.log")) as f:
                 why = [l.strip() for l in f if "failed" in l][-1:]
@@ -40,13 +45,13 @@ for c, label, n in (("a", "Case A (`cases/ar07_rough.toml`)", na), ("b", "Case B
                          "| | | | | | | | | |")
             continue
         s = load(f"{c}_{key}")
-        r = ref["fp" if key.startswith("fp") else "newton"]
-        mv = max(abs(s[k] / r[k] - 1) for k in FIG)
-        same = all(s[k] == r[k] for k in TIMES)
+        r = ref.get("fp" if key.startswith("fp") else "newton")  # None: its reference not run
+        mv = f"{max(abs(s[k] / r[k] - 1) for k in FIG):.1e}" if r else "-"
+        same = ("same" if all(s[k] == r[k] for k in TIMES) else "differ") if r else "-"
         t = ", ".join("-" if s[k] is None else f"{s[k]:g}" for k in TIMES)
         lines.append(f"| {name} | {s['runout_m']:.7f} | {s['max_front_x_m']:.7f} | "
                      f"{s['backwall_height_m']:.7f} | {t} | {s['max_p_granular_ratio']:.6f} | "
-                     f"{mv:.1e} | {'same' if same else 'differ'} | "
+                     f"{mv} | {same} | "
                      f"{s.get('warnings_fp_capped_steps', 0)} of {s['steps']} | {s['fp_iters_total']} | "
                      f"{s['wall_s']:.1f} |")
     lines.append("")

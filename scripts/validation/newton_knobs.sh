@@ -2,19 +2,22 @@
 # Issue 19's knob criterion for the exact plastic solver (rheology.solver = newton): case A and
 # case B at a coarse grid with r_factor and newton_tol each 4 times smaller and larger, and the
 # fixed point with r_factor / 4 beside them. Writes docs/newton_knobs.md.
-# Usage: scripts/validation/newton_knobs.sh [n_A] [n_B]   (defaults 16 16; 2 runs at a time;
-# about 8 minutes at 16 on this 2-core machine).
+# Usage: scripts/validation/newton_knobs.sh [n_A] [n_B] [out.md]   (defaults 16 16
+# docs/newton_knobs.md; 2 runs at a time; about 8 minutes at 16 on this 2-core machine, about
+# 10 minutes per Newton run at 32). RUNS="a_newton a_newton_r_div4 ..." runs only those (the
+# names below); the table then has only their rows.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 "$root/scripts/build.sh" > /dev/null
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
-na="${1:-16}"; nb="${2:-16}"
+na="${1:-16}"; nb="${2:-16}"; md="${3:-$root/docs/newton_knobs.md}"
 out="$root/runs/newton_knobs"
 mkdir -p "$out"
 bin="$root/build/granflow"
 job() {  # job <name> <args...>: at most two at a time
   while (( $(jobs -rp | wc -l) >= 2 )); do wait -n; done
   local name="$1"; shift
+  [[ -z "${RUNS:-}" || " $RUNS " == *" $name "* ]] || return 0
   rm -f "$out/$name.failed"
   { "$bin" run "$@" --out "$out/$name" --overwrite > "$out/$name.log" 2>&1 ||
       touch "$out/$name.failed"; } &
@@ -33,5 +36,6 @@ for c in a b; do
   job ${c}_fp_r_div4 "${A[@]}" --set rheology.r_factor=0.125
 done
 wait
-/usr/bin/python3 "$root/scripts/validation/newton_knobs.py" "$out" "$root/docs/newton_knobs.md" \
-  "scripts/validation/newton_knobs.sh $na $nb" "$na" "$nb"
+/usr/bin/python3 "$root/scripts/validation/newton_knobs.py" "$out" "$md" \
+  "${RUNS:+RUNS=\"$RUNS\" }scripts/validation/newton_knobs.sh $na $nb${3:+ $3}" "$na" "$nb" \
+  ${RUNS:+$RUNS}
