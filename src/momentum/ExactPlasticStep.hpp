@@ -86,6 +86,17 @@ struct ExactStepOptions {
   // from it, kappa_b drifts with the iterates. Measured on case A at n = 16 to 0.3 s: 211 of
   // 300 steps capped refreshed, 25 frozen (docs/RHEOLOGY.md).
   bool refresh_kappa_b = false;
+  // solve_newton without the pressure, with local rows (NewtonPlastic: the granular cells
+  // widened by solver.viscous_local_margin): from the second Newton iteration of a step on,
+  // the Newton system is solved on those rows only, the others frozen at the last full solve's
+  // values (their rows hold no plastic term, and A is dominated by its mass term, so the
+  // correction decays away from the grains). A step converges only when also the momentum
+  // residual over all rows, |A u - b - C Pi kappa S + walls| <= momentum_rtol |b| (2-norms);
+  // otherwise its next iteration is a full solve.
+  double momentum_rtol = 1e-10;
+  // NewtonPlastic: the margin of the local rows in cells (solver.viscous_local_margin; 0 = every
+  // Newton system solved on every row).
+  int local_margin = 0;
 };
 
 // The Coulomb walls in solve_newton (boundary/Coulomb.hpp, eqs. 22 and 30 with theta = 0), in
@@ -134,6 +145,8 @@ struct ExactStepStats {
   int refreshes = 0;      // solve_newton: kappa_b refreshed after a converged iteration
   double change = 0;      // the last multiplier change (max over cells)
   bool converged = false;
+  int local = 0;          // solve_newton: iterations solved on the local rows
+  int full = 0;           // solve_newton: iterations solved on every row
 };
 
 class ExactPlasticStep {
@@ -169,7 +182,10 @@ class ExactPlasticStep {
   // |S - P(S + c E u)| over the cells decreases (all the points between two iterates satisfy
   // the momentum equation, linear in (u, S)); with the same active sets the full step is taken
   // (on case A at n = 16 the halvings then slowed the bottom row's cells at the yield limit to
-  // a linear tail: 17 capped steps of 300 with them, 10 without). Once the active sets have
+  // a linear tail: 17 capped steps of 300 with them, 10 without). If ten halvings find no decrease,
+  // the Newton point is taken after all (a face or cell at its threshold can make the residual
+  // rise along the whole segment). A step that reaches max_outer ends at its best iterate (the
+  // smallest max residual after a solve), not its last. Once the active sets have
   // stayed the same for two iterations, c_R grows tenfold per iteration up to rigid_boost_max
   // times its value (ExactStepOptions::rigid_boost_max). Stops when max |S - P(S + c E u)| <=
   // tol over the cells (the criterion of solve()). Linear solves: KSP prefix -exactpd_,
@@ -194,7 +210,8 @@ class ExactPlasticStep {
   ExactStepStats solve_newton(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c, Vec u,
                               Vec S, const ExactStepOptions& opt = {},
                               const NewtonWalls* walls = nullptr, Vec c_rigid = nullptr,
-                              const NewtonPressure* pressure = nullptr);
+                              const NewtonPressure* pressure = nullptr,
+                              const std::vector<PetscInt>* local_rows = nullptr);
 
  private:
   const Grid& g_;
@@ -208,6 +225,9 @@ class ExactPlasticStep {
   // MatAXPY per iteration were 11 % of the run's time).
   Mat AJ_ = nullptr;
   void jacobian_pattern(Mat A);
+  // M_ anew, with a zero 3 x 3 block in every cell, or only in those with kappa_ > 0 (new
+  // entries elsewhere are then an error). Collective.
+  void make_M(bool granular_only);
   void fill_jacobian();  // J_ = AJ_ - CMB_, CMB_ current. Collective.
   const PlasticMatrices* m_ = nullptr;
   Vec b_ = nullptr, kappa_ = nullptr, c_ = nullptr, lambda_ = nullptr, D_ = nullptr,
@@ -233,6 +253,25 @@ class ExactPlasticStep {
   // One Newton system with the pressure: (J_, G; Dv, Zk_) (u, psi) = (rhs_, Zk_ psi_k), psi_k
   // the current psi (0 in the pinned cell). Collective.
   void solve_saddle(Vec u, int it);
+  // Local Newton solves (solve_newton's local_rows): the rows' index set, the sub-matrix of J,
+  // its direct solver, work vectors; solve_local solves J_RR d = (rhs - J u)_R, u_R += d.
+  IS is_loc_ = nullptr;
+  Mat Jloc_ = nullptr;
+  KSP ksp_loc_ = nullptr;
+  Vec work_vel_ = nullptr;
+  Vec u_best_ = nullptr, S_best_ = nullptr, sw_best_ = nullptr;  // the best iterate of a step
+  void solve_local(Vec u, int it);
+  // Where the largest residual of the last linearisation is (-exactpd_monitor): a cell (kind 0,
+  // q = |q|) or a Coulomb wall face (kind 1: u on the bottom or top, 2: v on the left or right;
+  // q = s_t + c_b u_t).
+  struct Worst {
+    double r = -1;
+    int i = -1, j = -1, kind = 0;
+    double q = 0;
+  } worst_;
+  void print_worst() const;  // collective
+  // |A u - b|_2 over the rows outside the local rows, over |b|_2.
+  double momentum_residual(Vec u);
   // The walls (null: none): per face (s0, g) of the last linearisation (two per dm_vel local
   // entry), the diagonal kappa_b g / h and the right-hand side -kappa_b s0 / h they add, and
   // the line search's copies of s_t.

@@ -345,12 +345,16 @@ void FixedPoint::set_plastic_region(Vec granular) {
 }
 
 std::vector<PetscInt> FixedPoint::local_rows(Vec granular, int margin) const {
+  return granular_rows(g_, granular, margin);
+}
+
+std::vector<PetscInt> granular_rows(const Grid& g, Vec granular, int margin) {
   Vec m;
-  GF_PETSC(DMGetGlobalVector(g_.dm_cell(), &m));
+  GF_PETSC(DMGetGlobalVector(g.dm_cell(), &m));
   GF_PETSC(VecCopy(granular, m));
   // Box dilation by margin cells: the mask is -1 on the granular cells, and each pass takes the
   // minimum over a cell and its 8 neighbours.
-  for (int pass = 0; pass < margin; ++pass) rheology::neighbourhood_min(g_, m, m);
+  for (int pass = 0; pass < margin; ++pass) rheology::neighbourhood_min(g, m, m);
   std::vector<PetscInt> rows;
   const PetscScalar* o;
   PetscInt len;
@@ -362,7 +366,7 @@ std::vector<PetscInt> FixedPoint::local_rows(Vec granular, int margin) const {
       rows.push_back(2 * c + 1);
     }
   GF_PETSC(VecRestoreArrayRead(m, &o));
-  GF_PETSC(DMRestoreGlobalVector(g_.dm_cell(), &m));
+  GF_PETSC(DMRestoreGlobalVector(g.dm_cell(), &m));
   return rows;
 }
 

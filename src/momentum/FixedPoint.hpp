@@ -64,6 +64,10 @@ struct PlasticInputs {
   Vec kappa_side = nullptr;
 };
 
+// The rows of a dm_vel global Vec (local indices, ascending) of the cells where `granular` < 0,
+// widened by `margin` cells (box dilation): their left and bottom faces' u and v. Collective.
+std::vector<PetscInt> granular_rows(const Grid& g, Vec granular, int margin);
+
 class FixedPoint {
  public:
   FixedPoint(const Grid& g, Predictor& pred, const rheology::Params& rheo,

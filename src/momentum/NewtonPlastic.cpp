@@ -109,10 +109,16 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
     };
   }
   if (coupled()) GF_PETSC(VecSet(pres_.psi, 0.0));
+  std::vector<PetscInt> rows;
+  // At least 2 cells: a cell's S reaches, through the node shear stresses, the faces of its
+  // neighbours' neighbours, and the rows outside must hold no plastic term.
+  if (opt_.local_margin > 0 && !coupled())
+    rows = granular_rows(g_, in.granular, std::max(opt_.local_margin, 2));
   ExactStepStats r;
   try {
     r = step_.solve_newton(pred_.matrix(), rhs0, m_, in.kappa, c_, u_tilde, s.S, opt_,
-                           wall ? &w : nullptr, c_rigid_, coupled() ? &pres_ : nullptr);
+                           wall ? &w : nullptr, c_rigid_, coupled() ? &pres_ : nullptr,
+                           opt_.local_margin > 0 && !coupled() ? &rows : nullptr);
   } catch (...) {
     walls.clear_cache();
     throw;

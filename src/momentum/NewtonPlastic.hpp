@@ -10,7 +10,9 @@
 // ExactPlasticStep::solve_newton (one direct solve per iteration). The plastic matrices B, C
 // are assembled once per step (the phase on the Coulomb walls changes). c = r kappa and c_b = r_b kappa_b are the fixed point's augmentations
 // (rheology.r_factor); the converged step does not depend on them (theta = 0: the rigid zones
-// are rigid, not elastic). Not with the node copy of S, the side walls or the gate.
+// are rigid, not elastic). Not with the node copy of S, the side walls or the gate. With
+// solver.viscous_local_margin > 0 the Newton systems after the first of a step are solved on the
+// granular rows widened by that margin (ExactStepOptions::local_margin).
 #include <petscvec.h>
 
 #include "fields/Fields.hpp"

@@ -73,6 +73,8 @@ PhysicsConfig physics_from_case(const CaseConfig& c) {
   p.newton_opt.tol = rh.newton_tol;
   p.newton_opt.max_outer = rh.newton_max_iter;
   p.newton_opt.refresh_kappa_b = rh.newton_wall_iterate;
+  p.newton_opt.local_margin = c.solver.viscous_local_margin;
+  p.newton_opt.momentum_rtol = c.solver.viscous_rtol;
   p.fp.local_margin = c.solver.viscous_local_margin;
   p.yield_support = rh.yield_on_mass && c.levelset.enabled ? p.eps : 0.0;
   p.interface_method = c.interface.method;

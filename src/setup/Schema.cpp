@@ -468,7 +468,11 @@ void declare_solver(Params& p) {
              "After the first viscous solve of a step, solve the fixed point's viscous problems "
              "only on the granular cells widened by this many cells, the others frozen, and end "
              "with one full solve (Predictor::begin_local); 0 = full solves throughout. "
-             "summary.json: visc_polish_its_total, what the closing solves had to add.");
+             "summary.json: visc_polish_its_total, what the closing solves had to add. With "
+             "rheology.solver = newton (newton_pressure = projection): the Newton systems after "
+             "the first of each step, on the same rows (at least 2 cells of margin), the step "
+             "converged only when the rows outside also hold the momentum equation to "
+             "solver.viscous_rtol.");
   p.add_string("solver.petsc_options", "",
                "Extra PETSc options, e.g. \"-pres_pc_type gamg\"; applied before the command "
                "line's, which therefore win.",
