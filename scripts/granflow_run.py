@@ -100,7 +100,7 @@ DIAGNOSTICS_UNITS = {
     "dissipated_friction": "J/m", "energy_residual": "J/m", "side_stick_m2": "m²",
     "side_slide_m2": "m²", "side_normal_N": "N/m", "side_friction_x_N": "N/m",
     "side_friction_y_N": "N/m", "gate_bottom_m": "m", "gate_normal_N": "N/m",
-    "gate_friction_N": "N/m",
+    "gate_friction_N": "N/m", "fp_change_max": "1", "fp_capped_steps": "-",
 }
 PROFILES_UNITS = {"t": "s", "x": "m", "h": "m"}
 STRUCTURE_UNITS = {"t": "s", "cutoff": "1", "x": "m", "h": "m", "h_deposit": "m", "h_l": "m"}

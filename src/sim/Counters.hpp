@@ -57,6 +57,8 @@ inline const std::vector<Counter<Loop>>& loop_counters() {
       {"loop.diss_friction", &Loop::diss_friction, nullptr, S::None, true},
       {"loop.vol_prev", &Loop::vol_prev, nullptr, S::None, true},
       {"loop.vol_step_max", &Loop::vol_step_max, nullptr, S::None, true},
+      {"loop.row_fp_change_max", &Loop::row_fp_change_max, nullptr, S::None, true},
+      {"loop.row_fp_capped", &Loop::row_fp_capped, nullptr, S::None, true},
       {"loop.stress_steps", &Loop::stress_steps, "initial_stress_steps", S::InitialStress, true},
       {"loop.stress_speed", &Loop::stress_speed, "initial_stress_speed_mps", S::InitialStress,
        true},

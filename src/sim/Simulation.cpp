@@ -103,7 +103,8 @@ const std::vector<std::string> kDiagnosticsColumns = {
     "backwall_h", "max_p_granular", "max_speed_granular", "volume_step_change",
     "potential_energy", "dissipated_viscous", "dissipated_plastic", "dissipated_friction",
     "energy_residual", "side_stick_m2", "side_slide_m2", "side_normal_N", "side_friction_x_N",
-    "side_friction_y_N", "gate_bottom_m", "gate_normal_N", "gate_friction_N"};
+    "side_friction_y_N", "gate_bottom_m", "gate_normal_N", "gate_friction_N", "fp_change_max",
+    "fp_capped_steps"};
 
 }  // namespace
 
@@ -146,7 +147,9 @@ void Loop::add(const StepStats& st, double dt) {
   if (st.fp_capped) {
     ++fp_capped_steps;
     fp_capped_change = std::max(fp_capped_change, st.fp_change);
+    ++row_fp_capped;
   }
+  row_fp_change_max = std::max(row_fp_change_max, st.fp_change);
   if (st.pres_fallback) ++pres_fallbacks;
   mu_floor_max = std::max(mu_floor_max, st.mu_i_floor_cells);
   mu_cap_max = std::max(mu_cap_max, st.mu_i_cap_cells);
@@ -351,11 +354,14 @@ void Simulation::write_diagnostics() {
                    pe, lp_.diss_viscous, lp_.diss_plastic, lp_.diss_friction, residual,
                    wc.side.stick_m2, wc.side.slide_m2, wc.side.normal_N, wc.side.friction_N[0],
                    wc.side.friction_N[1], wc.gate_bottom_m, wc.gate_normal_N,
-                   wc.gate_friction_N});
+                   wc.gate_friction_N, lp_.row_fp_change_max,
+                   static_cast<double>(lp_.row_fp_capped)});
   } catch (const io::IoError& e) {
     err = e.what();
   }
   lp_.vol_step_max = 0;
+  lp_.row_fp_change_max = 0;
+  lp_.row_fp_capped = 0;
   // The plastic fields only when a probe samples them (one extra strain-rate evaluation).
   io::NamedCellFields extra;
   if (out_->probes.samples("D_norm") || out_->probes.samples("S_norm")) {

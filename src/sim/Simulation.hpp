@@ -108,6 +108,11 @@ struct Loop {
   // The granular volume after the last step (m^2/m) and the largest change of one step since
   // the last diagnostics row, relative to vol0.
   double vol_prev = 0, vol_step_max = 0;
+  // Since the last diagnostics row: the largest last change (fixed point) or residual (Newton)
+  // of a step's solve of eq. 31, and the steps that ended at its cap (issue 19: every step's
+  // convergence in diagnostics.csv, not only the last one's).
+  double row_fp_change_max = 0;
+  long long row_fp_capped = 0;
   StepStats last;               // the last step's statistics (diagnostics columns)
   // initial.stress = "equilibrium": pseudo-steps taken, the velocity the last one made (m/s);
   // -1: not asked for.

@@ -71,7 +71,7 @@ run dp1
 run dp2 "$mpirun" --oversubscribe -n 2
 echo "--- case A (DP, Coulomb walls): diagnostics.csv, 1 rank vs 2 ranks"
 "$py" "$check" compare "$tmp/dp1/diagnostics.csv" "$tmp/dp2/diagnostics.csv" --rtol 1e-8 \
-  --atol max_divergence=1e-9 --atol fp_change=1e-9 --atol left_friction_N=1e-6 \
+  --atol max_divergence=1e-9 --atol fp_change=1e-9 --atol fp_change_max=1e-9 --atol left_friction_N=1e-6 \
   --atol bottom_friction_N=1e-6 "${roundoff[@]}" --int-tol visc_its=100000 \
   --int-tol pres_its=2 --int-tol fp_iters=1000 || fail=1
 # The collapse measures (diagnostics/Collapse.hpp) reduce columns across ranks: the profile,
