@@ -2,7 +2,8 @@
 """The exact plastic solver's cost against the fixed point's (issue 19), whole process.
 
 Runs case A (cases/ar07_rough.toml) at one grid on one rank, with the paper's fixed point and
-with rheology.solver = newton, `--repeats` times each, one run at a time, and writes
+with rheology.solver = newton (with its local Newton solves, the default, and with every Newton
+system on every row), `--repeats` times each, one run at a time, and writes
 docs/newton_speed.md: the median wall time of the whole process and, per step, the Newton run's
 cost as a multiple of one pressure solve plus one viscous solve, both measured in the fixed-point
 runs of the same session (the issue's machine-independent reference):
@@ -47,7 +48,9 @@ def main():
             "--set", "output.vtk_interval=0"]
     variants = [("fixed point (default)", []),
                 ("newton (projection, wall load from the step's start)",
-                 ["--set", "rheology.solver=newton"])]
+                 ["--set", "rheology.solver=newton"]),
+                ("newton, every Newton system on every row (solver.viscous_local_margin = 0)",
+                 ["--set", "rheology.solver=newton", "--set", "solver.viscous_local_margin=0"])]
     load0 = os.getloadavg()[0]
     res = {}
     with tempfile.TemporaryDirectory() as tmp:
