@@ -32,6 +32,7 @@ State::State(const Grid& g)
       S(g.dm_ten(), "S"),
       S_node(g.dm_node(), "S_node"),
       s_wall(g.dm_vel(), "s_wall"),
+      vel_pred(g.dm_vel(), "velocity_prediction"),
       s_side(g.dm_vel(), "s_side"),
       rho(g.dm_cell(), "rho"),
       eta(g.dm_cell(), "eta") {}

@@ -39,6 +39,9 @@ struct State {
   Field S_node;   // dm_node, the node copy of S (rheology.plastic_grid = "cell_node"), else 0
   Field s_wall;   // dm_vel, dimensionless, |s_t| <= 1: Coulomb wall stress direction (eq. 30),
                   // stored on the wall faces (momentum/Momentum.hpp, wall storage)
+  // dm_vel, m/s: the last step's prediction u~ (before the projection), where the exact plastic
+  // step (rheology.solver = newton) starts its Newton iteration (checkpointed with it); else 0.
+  Field vel_pred;
   Field s_side;   // dm_vel read as a cell-centred vector, |s| <= 1: the direction of the side
                   // walls' friction (boundary/SideWalls.hpp); 0 without side walls
   // Derived from phi (refreshed by the stepper): density and viscosity at cell centres.

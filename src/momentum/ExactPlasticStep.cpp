@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -610,6 +611,8 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     }
   }
   double best = std::numeric_limits<double>::infinity();  // the best iterate's residual max
+  const double restart_c = opt.restart_c;
+  bool c_scaled = false;
   bool full_next = true;  // the first iteration of a step solves on every row
   int local_since_full = 0;
   if (pres_) {
@@ -686,6 +689,26 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       GF_PETSC(VecCopy(u, u_best_));
       GF_PETSC(VecCopy(lambda_, S_best_));
       if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_best_));
+    }
+    if (restart_c > 0 && it == opt.restart_at && !pres_ && !(walls_ && walls_->refresh)) {
+      // A step not converged by now: again from its best iterate, with c and c_b scaled by
+      // restart_c (see ExactStepOptions::restart_c).
+      GF_PETSC(VecCopy(u_best_, u));
+      GF_PETSC(VecCopy(S_best_, lambda_));
+      if (walls_) GF_PETSC(VecCopy(sw_best_, walls_->s_wall));
+      GF_PETSC(VecScale(c_, restart_c));
+      if (walls_) GF_PETSC(VecScale(walls_->c_num, restart_c));
+      c_scaled = true;
+      boost_ = 1;
+      calm = 0;
+      window.clear();
+      full_next = true;
+      std::fill(active_.begin(), active_.end(), 0);
+      res = linearise(u, opt);
+      jacobian_pattern(A);
+      if (monitor)
+        GF_PETSC(PetscPrintf(g_.comm(), "  exact plastic step: again from the best iterate, c x %g\n",
+                             restart_c));
     }
     if (it == opt.max_outer) {
       // Capped: end at the best iterate rather than the last (the last can be any point of a
@@ -788,6 +811,10 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_prev_));
   }
   GF_PETSC(VecCopy(lambda_, S));
+  if (c_scaled) {
+    GF_PETSC(VecScale(c_, 1 / restart_c));
+    if (walls_) GF_PETSC(VecScale(walls_->c_num, 1 / restart_c));
+  }
   return st;
 }
 

@@ -94,6 +94,17 @@ struct ExactStepOptions {
   // residual over all rows, |A u - b - C Pi kappa S + walls| <= momentum_rtol |b| (2-norms);
   // otherwise its next iteration is a full solve.
   double momentum_rtol = 1e-10;
+  // solve_newton without the pressure or the walls' refresh: a step not converged after
+  // restart_at iterations starts again from its best iterate with c (and the walls' c_b) times
+  // restart_c (0: never). The answer does not depend on c; the classification q = S + c E u
+  // does: a smaller c weighs the multiplier S more than the strain rate, which calms a cell at
+  // its yield limit (|S| = 1 with E u = 0, where the iterates of case A at n = 16 hovered at
+  // |q| - 1 = 1e-5 to 1e-4 for 100 iterations next to the rough bottom while back-wall faces
+  // changed between sticking and sliding). Case A at n = 16 to 1.06 s, started from the last
+  // prediction: 1 step capped without, none with (5,518 iterations against 5,520); case B: the
+  // same 5,212 iterations; c x 10 capped 3 of case A's first 600 steps.
+  int restart_at = 40;
+  double restart_c = 0.1;
   // NewtonPlastic: the margin of the local rows in cells (solver.viscous_local_margin; 0 = every
   // Newton system solved on every row).
   int local_margin = 0;

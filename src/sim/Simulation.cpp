@@ -88,6 +88,7 @@ std::vector<io::CheckpointField> checkpoint_fields(State& s, Vec phi0, Vec frac0
   if (tr.returns_to_start) f.push_back({"phi0", phi0});
   if (tr.node_copy) f.push_back({"S_node", s.S_node});  // rheology.plastic_grid = "cell_node"
   if (tr.side_walls) f.push_back({"s_side", s.s_side});  // boundary.side_walls
+  if (tr.newton) f.push_back({"velocity_prediction", s.vel_pred});  // rheology.solver = newton
   if (tr.conservative) {  // interface.method = "clsvof": the volume fraction carries the mass
     f.push_back({"volume_fraction", s.frac});
     if (tr.returns_to_start) f.push_back({"volume_fraction0", frac0});

@@ -40,6 +40,7 @@ struct ModelTraits {
   std::array<double, 2> gravity{0.0, -9.81};  // m/s^2
   bool node_copy = false;       // the node copy of S is a prognostic field (checkpointed)
   bool side_walls = false;      // the side walls' friction direction s_side is (checkpointed)
+  bool newton = false;          // the exact plastic step: State::vel_pred is (checkpointed)
   // The granular mass is the volume fraction's (interface.method = "clsvof"): State::frac is a
   // prognostic field (checkpointed) and the granular volume is sum c hx hy.
   bool conservative = false;

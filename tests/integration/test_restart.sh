@@ -14,6 +14,9 @@
 #     test_mpi_consistency.sh) stopped at time.max_steps = 40 on 1 rank and continued on
 #     2 ranks agrees with the uninterrupted 1-rank run to 1e-8 relative (same rule as
 #     test_mpi_consistency.sh); its .pvd stays valid.
+#  2b. The exact plastic step (rheology.solver = newton), whose Newton iteration starts from the
+#     last prediction u~ (checkpointed as velocity_prediction): case A at n = 16 stopped at
+#     step 53 and continued reproduces diagnostics.csv byte for byte.
 #  3. Bad restarts, each with its exit code and message, none changing the folder: a
 #     truncated state.bin (5), a corrupted byte (5), a truncated header (5), a case edited to
 #     another grid.n (3), --set of a key a restart may not change (3), no checkpoint (3),
@@ -118,6 +121,24 @@ echo "--- diagnostics.csv: 1 rank uninterrupted vs 1 rank to step 40 + 2 ranks f
 "$py" "$check" compare "$tmp/d1/probes/bottom.csv" "$tmp/d12/probes/bottom.csv" --rtol 1e-8 \
   > "$tmp/probe_cmp.log" || { cat "$tmp/probe_cmp.log"; bad "1 -> 2 ranks probes"; }
 "$py" "$check" pvd "$tmp/d12/fields.pvd" --count 6 --same-as "$tmp/d1/fields.pvd" || bad "fields.pvd after the 2-rank restart"
+
+# ---------------------------------------------------------------- 2b. the exact plastic step
+# rheology.solver = newton starts each step's Newton iteration from the last prediction u~,
+# which the checkpoint holds (velocity_prediction): case A at n = 16 stopped at step 53 and
+# continued reproduces the uninterrupted run's diagnostics.csv byte for byte.
+N=("$src/cases/ar07_rough.toml" --set grid.n=16 --set time.t_end=0.1 --set output.vtk_interval=0
+   --set output.progress_interval=0 --set rheology.solver=newton)
+start=$SECONDS
+rc=$(run_rc "$tmp/n1.log" "$bin" run "${N[@]}" --out "$tmp/n1")
+[[ $rc == 0 ]] || { cat "$tmp/n1.log"; bad "Newton case A exited $rc"; }
+rc=$(run_rc "$tmp/n2a.log" "$bin" run "${N[@]}" --set time.max_steps=53 --out "$tmp/n2")
+[[ $rc == 0 ]] || { cat "$tmp/n2a.log"; bad "Newton case A to step 53 exited $rc"; }
+rc=$(run_rc "$tmp/n2b.log" "$bin" run --restart "$tmp/n2" --set time.max_steps=0)
+[[ $rc == 0 ]] || { cat "$tmp/n2b.log"; bad "Newton case A restart exited $rc"; }
+if cmp -s "$tmp/n1/diagnostics.csv" "$tmp/n2/diagnostics.csv"; then
+  ok "Newton, stopped at step 53 + restart: diagnostics.csv identical to the uninterrupted run"
+else bad "Newton, stopped at step 53 + restart: diagnostics.csv differs"; fi
+echo "Newton case A, restart: $((SECONDS - start)) s"
 
 # ---------------------------------------------------------------- 3. bad restarts
 # expect_restart LABEL CODE DIR "ARGS" PATTERN...: exit CODE, every PATTERN in the output, and
