@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -704,8 +703,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       window.clear();
       full_next = true;
       std::fill(active_.begin(), active_.end(), 0);
-      res = linearise(u, opt);
-      jacobian_pattern(A);
+      res = linearise(u, opt);  // J's pattern is the same: M's is fixed for the step
       if (monitor)
         GF_PETSC(PetscPrintf(g_.comm(), "  exact plastic step: again from the best iterate, c x %g\n",
                              restart_c));
