@@ -611,7 +611,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   }
   double best = std::numeric_limits<double>::infinity();  // the best iterate's residual max
   const double restart_c = opt.restart_c;
-  bool c_scaled = false;
+  double c_scale = 1;  // c and c_b times this, after the restarts
   bool full_next = true;  // the first iteration of a step solves on every row
   int local_since_full = 0;
   if (pres_) {
@@ -689,15 +689,18 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       GF_PETSC(VecCopy(lambda_, S_best_));
       if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_best_));
     }
-    if (restart_c > 0 && it == opt.restart_at && !pres_ && !(walls_ && walls_->refresh)) {
+    const bool restart_now = it == opt.restart_at ||
+                             (opt.restart_every > 0 && it > opt.restart_at &&
+                              (it - opt.restart_at) % opt.restart_every == 0);
+    if (restart_c > 0 && restart_now && !pres_ && !(walls_ && walls_->refresh)) {
       // A step not converged by now: again from its best iterate, with c and c_b scaled by
-      // restart_c (see ExactStepOptions::restart_c).
+      // restart_c once more (see ExactStepOptions::restart_c).
       GF_PETSC(VecCopy(u_best_, u));
       GF_PETSC(VecCopy(S_best_, lambda_));
       if (walls_) GF_PETSC(VecCopy(sw_best_, walls_->s_wall));
       GF_PETSC(VecScale(c_, restart_c));
       if (walls_) GF_PETSC(VecScale(walls_->c_num, restart_c));
-      c_scaled = true;
+      c_scale *= restart_c;
       boost_ = 1;
       calm = 0;
       window.clear();
@@ -809,9 +812,9 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_prev_));
   }
   GF_PETSC(VecCopy(lambda_, S));
-  if (c_scaled) {
-    GF_PETSC(VecScale(c_, 1 / restart_c));
-    if (walls_) GF_PETSC(VecScale(walls_->c_num, 1 / restart_c));
+  if (c_scale != 1) {
+    GF_PETSC(VecScale(c_, 1 / c_scale));
+    if (walls_) GF_PETSC(VecScale(walls_->c_num, 1 / c_scale));
   }
   return st;
 }
