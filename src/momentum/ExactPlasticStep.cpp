@@ -38,6 +38,66 @@ void make_direct_ksp(MPI_Comm comm, const char* prefix, KSP* ksp) {
   GF_PETSC(PCSetType(pc, PCLU));
   GF_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
 }
+// Why a direct solve failed: the PC's reason and, from MUMPS, INFOG(1) and INFOG(2) (the
+// error and its detail, e.g. -9: the workspace ICNTL(14) too small; -10: a singular matrix).
+std::string lu_failure(KSP ksp) {
+  PC pc;
+  GF_PETSC(KSPGetPC(ksp, &pc));
+  PCFailedReason pr;
+  GF_PETSC(PCGetFailedReason(pc, &pr));
+  std::string s = std::string("PC: ") + PCFailedReasons[pr];
+  Mat F = nullptr;
+  MatSolverType type = nullptr;
+  if (PCFactorGetMatSolverType(pc, &type) == 0 && type &&
+      std::string(type) == MATSOLVERMUMPS && PCFactorGetMatrix(pc, &F) == 0 && F) {
+    PetscInt g1 = 0, g2 = 0;
+    if (MatMumpsGetInfog(F, 1, &g1) == 0 && MatMumpsGetInfog(F, 2, &g2) == 0)
+      s += ", MUMPS INFOG(1) = " + std::to_string(g1) + ", INFOG(2) = " + std::to_string(g2);
+  }
+  return s;
+}
+// KSPSolve with the direct solver, and once more with twice the workspace each time MUMPS
+// runs out of it (INFOG(1) = -9 or -8: delayed pivots beyond the analysis' estimate plus
+// ICNTL(14) percent, default 20; case B at n = 128 with the exact solver, the local rows,
+// step 96, wanted 10,044 more entries). The answer does not depend on the workspace. Gives
+// the solve's reason; a failure of another kind is left to the caller.
+KSPConvergedReason direct_solve(KSP ksp, Mat J, Vec rhs, Vec x) {
+  GF_PETSC(KSPSetOperators(ksp, J, J));
+  GF_PETSC(KSPSolve(ksp, rhs, x));
+  KSPConvergedReason why;
+  GF_PETSC(KSPGetConvergedReason(ksp, &why));
+  for (int retry = 0; why < 0 && retry < 6; ++retry) {
+    PC pc;
+    GF_PETSC(KSPGetPC(ksp, &pc));
+    MatSolverType type = nullptr;
+    Mat F = nullptr;
+    GF_PETSC(PCFactorGetMatSolverType(pc, &type));
+    if (!type || std::string(type) != MATSOLVERMUMPS) break;
+    GF_PETSC(PCFactorGetMatrix(pc, &F));
+    PetscInt g1 = 0, pct = 0;
+    GF_PETSC(MatMumpsGetInfog(F, 1, &g1));
+    if (g1 != -9 && g1 != -8) break;
+    GF_PETSC(MatMumpsGetIcntl(F, 14, &pct));
+    const PetscInt more = std::max<PetscInt>(2 * pct, 40);
+    PetscPrintf(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)),
+                "granflow: note: the exact plastic step's LU (MUMPS) ran out of workspace "
+                "(INFOG(1) = %d); factorising again with ICNTL(14) = %d %% (was %d)\n",
+                static_cast<int>(g1), static_cast<int>(more), static_cast<int>(pct));
+    // A new factor from a new analysis: PETSc 3.18's MUMPS interface skips the numerical
+    // factorisation of a factor whose last phase failed (INFOG(1) < 0), and MUMPS reads its
+    // ICNTL from the options database (under the KSP's prefix) at the analysis. The larger
+    // workspace stays for the rest of the run (both KSPs with this prefix).
+    const char* prefix = nullptr;
+    GF_PETSC(KSPGetOptionsPrefix(ksp, &prefix));
+    const std::string key = "-" + std::string(prefix ? prefix : "") + "mat_mumps_icntl_14";
+    GF_PETSC(PetscOptionsSetValue(nullptr, key.c_str(), std::to_string(more).c_str()));
+    GF_PETSC(PCReset(pc));
+    GF_PETSC(KSPSetOperators(ksp, J, J));
+    GF_PETSC(KSPSolve(ksp, rhs, x));
+    GF_PETSC(KSPGetConvergedReason(ksp, &why));
+  }
+  return why;
+}
 }  // namespace
 
 void saddle_blocks(const Grid& g, NewtonPressure& p) {
@@ -741,14 +801,12 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       full_next = false;
       local_since_full = 0;
       ++st.full;
-      GF_PETSC(KSPSetOperators(ksp_, J_, J_));
-      GF_PETSC(KSPSolve(ksp_, rhs_, u));
-      KSPConvergedReason why;
-      GF_PETSC(KSPGetConvergedReason(ksp_, &why));
+      const KSPConvergedReason why = direct_solve(ksp_, J_, rhs_, u);
       if (why < 0)
         throw RunError("exact plastic step: the Newton system's solve failed (" +
-                       std::string(KSPConvergedReasons[why]) + ") in iteration " +
-                       std::to_string(it + 1) + "; try -exactpd_ksp_monitor to see it");
+                       std::string(KSPConvergedReasons[why]) + ", " + lu_failure(ksp_) +
+                       ") in iteration " + std::to_string(it + 1) +
+                       "; try -exactpd_ksp_monitor to see it");
     }
     newton_update(u);
     st.outer = st.newton = it + 1;
@@ -841,16 +899,14 @@ void ExactPlasticStep::solve_local(Vec u, int it) {
   Vec r, d, ul;
   GF_PETSC(VecGetSubVector(work_vel_, is_loc_, &r));
   GF_PETSC(VecDuplicate(r, &d));
-  GF_PETSC(KSPSetOperators(ksp_loc_, Jloc_, Jloc_));
-  GF_PETSC(KSPSolve(ksp_loc_, r, d));
-  KSPConvergedReason why;
-  GF_PETSC(KSPGetConvergedReason(ksp_loc_, &why));
+  const KSPConvergedReason why = direct_solve(ksp_loc_, Jloc_, r, d);
   GF_PETSC(VecRestoreSubVector(work_vel_, is_loc_, &r));
   if (why < 0) {
     VecDestroy(&d);
     throw RunError("exact plastic step: the local Newton system's solve failed (" +
-                   std::string(KSPConvergedReasons[why]) + ") in iteration " +
-                   std::to_string(it + 1) + "; try solver.viscous_local_margin = 0");
+                   std::string(KSPConvergedReasons[why]) + ", " + lu_failure(ksp_loc_) +
+                   ") in iteration " + std::to_string(it + 1) +
+                   "; try solver.viscous_local_margin = 0");
   }
   GF_PETSC(VecGetSubVector(u, is_loc_, &ul));
   GF_PETSC(VecAXPY(ul, 1.0, d));
@@ -937,14 +993,12 @@ void ExactPlasticStep::solve_saddle(Vec u, int it) {
   GF_PETSC(VecCopy(rp, sub));
   GF_PETSC(VecRestoreSubVector(R_, rows[1], &sub));
   GF_PETSC(DMRestoreGlobalVector(g_.dm_cell(), &rp));
-  GF_PETSC(KSPSetOperators(ksp_sp_, K_, K_));
-  GF_PETSC(KSPSolve(ksp_sp_, R_, X_));
-  KSPConvergedReason why;
-  GF_PETSC(KSPGetConvergedReason(ksp_sp_, &why));
+  const KSPConvergedReason why = direct_solve(ksp_sp_, K_, R_, X_);
   if (why < 0) {
     MatDestroy(&nest);
     throw RunError("exact plastic step: the Newton system's solve with the pressure failed (" +
-                   std::string(KSPConvergedReasons[why]) + ") in iteration " +
+                   std::string(KSPConvergedReasons[why]) + ", " + lu_failure(ksp_sp_) +
+                   ") in iteration " +
                    std::to_string(it + 1) + "; try -exactpd_sp_ksp_monitor to see it");
   }
   GF_PETSC(VecGetSubVector(X_, rows[0], &sub));
