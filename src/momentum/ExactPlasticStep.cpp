@@ -38,6 +38,17 @@ void make_direct_ksp(MPI_Comm comm, const char* prefix, KSP* ksp) {
   GF_PETSC(PCSetType(pc, PCLU));
   GF_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
 }
+// The MUMPS factor of a direct KSP's PC, or nullptr if it factorises with another solver.
+Mat mumps_factor(KSP ksp) {
+  PC pc;
+  GF_PETSC(KSPGetPC(ksp, &pc));
+  MatSolverType type = nullptr;
+  GF_PETSC(PCFactorGetMatSolverType(pc, &type));
+  if (!type || std::string(type) != MATSOLVERMUMPS) return nullptr;
+  Mat F = nullptr;
+  GF_PETSC(PCFactorGetMatrix(pc, &F));
+  return F;
+}
 // Why a direct solve failed: the PC's reason and, from MUMPS, INFOG(1) and INFOG(2) (the
 // error and its detail, e.g. -9: the workspace ICNTL(14) too small; -10: a singular matrix).
 std::string lu_failure(KSP ksp) {
@@ -46,13 +57,11 @@ std::string lu_failure(KSP ksp) {
   PCFailedReason pr;
   GF_PETSC(PCGetFailedReason(pc, &pr));
   std::string s = std::string("PC: ") + PCFailedReasons[pr];
-  Mat F = nullptr;
-  MatSolverType type = nullptr;
-  if (PCFactorGetMatSolverType(pc, &type) == 0 && type &&
-      std::string(type) == MATSOLVERMUMPS && PCFactorGetMatrix(pc, &F) == 0 && F) {
+  if (Mat F = mumps_factor(ksp)) {
     PetscInt g1 = 0, g2 = 0;
-    if (MatMumpsGetInfog(F, 1, &g1) == 0 && MatMumpsGetInfog(F, 2, &g2) == 0)
-      s += ", MUMPS INFOG(1) = " + std::to_string(g1) + ", INFOG(2) = " + std::to_string(g2);
+    GF_PETSC(MatMumpsGetInfog(F, 1, &g1));
+    GF_PETSC(MatMumpsGetInfog(F, 2, &g2));
+    s += ", MUMPS INFOG(1) = " + std::to_string(g1) + ", INFOG(2) = " + std::to_string(g2);
   }
   return s;
 }
@@ -67,13 +76,8 @@ KSPConvergedReason direct_solve(KSP ksp, Mat J, Vec rhs, Vec x) {
   KSPConvergedReason why;
   GF_PETSC(KSPGetConvergedReason(ksp, &why));
   for (int retry = 0; why < 0 && retry < 6; ++retry) {
-    PC pc;
-    GF_PETSC(KSPGetPC(ksp, &pc));
-    MatSolverType type = nullptr;
-    Mat F = nullptr;
-    GF_PETSC(PCFactorGetMatSolverType(pc, &type));
-    if (!type || std::string(type) != MATSOLVERMUMPS) break;
-    GF_PETSC(PCFactorGetMatrix(pc, &F));
+    const Mat F = mumps_factor(ksp);
+    if (!F) break;
     PetscInt g1 = 0, pct = 0;
     GF_PETSC(MatMumpsGetInfog(F, 1, &g1));
     if (g1 != -9 && g1 != -8) break;
@@ -91,6 +95,8 @@ KSPConvergedReason direct_solve(KSP ksp, Mat J, Vec rhs, Vec x) {
     GF_PETSC(KSPGetOptionsPrefix(ksp, &prefix));
     const std::string key = "-" + std::string(prefix ? prefix : "") + "mat_mumps_icntl_14";
     GF_PETSC(PetscOptionsSetValue(nullptr, key.c_str(), std::to_string(more).c_str()));
+    PC pc;
+    GF_PETSC(KSPGetPC(ksp, &pc));
     GF_PETSC(PCReset(pc));
     GF_PETSC(KSPSetOperators(ksp, J, J));
     GF_PETSC(KSPSolve(ksp, rhs, x));
