@@ -27,10 +27,10 @@ import granflow_run as gr  # noqa: E402
 from benchmark import machine  # noqa: E402
 
 
-def run(bin_, args, out):
+def run(bin_, args, out, petsc):
     t0 = time.monotonic()
-    subprocess.run([bin_, "run", *args, "--out", out], check=True, stdout=subprocess.DEVNULL,
-                   stderr=subprocess.DEVNULL)
+    subprocess.run([bin_, "run", *args, "--out", out, "--", *petsc], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return time.monotonic() - t0, gr.Run(out).summary
 
 
@@ -42,23 +42,32 @@ def main():
     ap.add_argument("--t-end", type=float, default=1.06)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--out", default="docs/newton_speed.md")
+    ap.add_argument("--variants", default="all",
+                    help="comma-separated keys of the variants to run (fp always runs): "
+                         "newton, rows, metis; or all")
     a = ap.parse_args()
     case = os.path.join(a.src, "cases", "ar07_rough.toml")
     base = [case, "--set", f"grid.n={a.n}", "--set", f"time.t_end={a.t_end}",
             "--set", "output.vtk_interval=0"]
-    variants = [("fixed point (default)", []),
-                ("newton (projection, wall load from the step's start)",
-                 ["--set", "rheology.solver=newton"]),
-                ("newton, every Newton system on every row (solver.viscous_local_margin = 0)",
-                 ["--set", "rheology.solver=newton", "--set", "solver.viscous_local_margin=0"])]
+    newton = ["--set", "rheology.solver=newton"]
+    # (key, name, --set arguments, PETSc options)
+    variants = [("fp", "fixed point (default)", [], []),
+                ("newton", "newton (projection, wall load from the step's start)", newton, []),
+                ("rows", "newton, every Newton system on every row "
+                 "(solver.viscous_local_margin = 0)",
+                 newton + ["--set", "solver.viscous_local_margin=0"], []),
+                ("metis", "newton, MUMPS's METIS ordering (-exactpd_mat_mumps_icntl_7 7; the "
+                 "default QAMD since 2026-12-06)", newton, ["-exactpd_mat_mumps_icntl_7", "7"])]
+    keep = {"fp", *a.variants.split(",")} if a.variants != "all" else {v[0] for v in variants}
+    variants = [(name, extra, petsc) for key, name, extra, petsc in variants if key in keep]
     load0 = os.getloadavg()[0]
     res = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for name, extra in variants:
+        for name, extra, petsc in variants:
             res[name] = []
             for k in range(a.repeats):
                 out = os.path.join(tmp, f"{len(res)}_{k}")
-                wall, s = run(a.bin, base + extra, out)
+                wall, s = run(a.bin, base + extra, out, petsc)
                 res[name].append((wall, s))
                 print(f"{name}, run {k + 1}: {wall:.2f} s, {s['steps']} steps, "
                       f"{s.get('warnings_fp_capped_steps', 0)} capped", flush=True)
@@ -81,7 +90,7 @@ def main():
         "| solver | wall s (min-max) | steps | capped steps | iterations per step | ms per step "
         "| per step / (pressure + viscous solve) |",
         "|---|---|---|---|---|---|---|"]
-    for name, _ in variants:
+    for name, _, _ in variants:
         r = res[name]
         walls = [w for w, _ in r]
         s = r[0][1]

@@ -680,16 +680,26 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   double c_scale = 1;  // c and c_b times this, after the restarts
   bool full_next = true;  // the first iteration of a step solves on every row
   int local_since_full = 0;
+  // Options set here, not at construction, so that a run that does not use them is not warned
+  // of unused options; the user's own value, if any, stays.
+  const auto default_option = [](const char* key, const char* value) {
+    PetscBool set = PETSC_FALSE;
+    GF_PETSC(PetscOptionsHasName(nullptr, nullptr, key, &set));
+    if (!set) GF_PETSC(PetscOptionsSetValue(nullptr, key, value));
+  };
   if (pres_) {
     // The saddle point's zero (2,2) block makes MUMPS delay pivots beyond its default
     // workspace (INFOG(1) = -9 on the unit test's 8 x 32 channel at the default 20 %, solved at
-    // 100 %): 200 % unless the user says otherwise. Set here, not at construction, so that a
-    // run without the pressure is not warned of an unused option.
-    PetscBool ws_set = PETSC_FALSE;
-    GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_sp_mat_mumps_icntl_14", &ws_set));
-    if (!ws_set)
-      GF_PETSC(PetscOptionsSetValue(nullptr, "-exactpd_sp_mat_mumps_icntl_14", "200"));
+    // 100 %): 200 %.
+    default_option("-exactpd_sp_mat_mumps_icntl_14", "200");
     GF_PETSC(KSPSetFromOptions(ksp_sp_));
+  } else {
+    // MUMPS' ordering QAMD (ICNTL(7) = 6) instead of its default (METIS here): case A at
+    // n = 128, its first 14 steps, the analyses took 20.4 s with METIS and 1.0 s with QAMD,
+    // and the numerical factorisations 157 s and 109 s (the flop count 11 % higher; timings of
+    // single runs, docs/RHEOLOGY.md). Each step analyses two matrices anew (the granular
+    // cells, and the local rows, move).
+    default_option("-exactpd_mat_mumps_icntl_7", "6");
   }
   // The line search's window: the 2-norms of the residual after the last iterations (from the
   // first solve on, and again from each refresh of kappa_b).

@@ -204,7 +204,8 @@ class ExactPlasticStep {
   // stayed the same for two iterations, c_R grows tenfold per iteration up to rigid_boost_max
   // times its value (ExactStepOptions::rigid_boost_max). Stops when max |S - P(S + c E u)| <=
   // tol over the cells (the criterion of solve()). Linear solves: KSP prefix -exactpd_,
-  // default a direct solve (MUMPS LU); -exactpd_monitor prints the residual of every iteration.
+  // default a direct solve (MUMPS LU, ordering QAMD: -exactpd_mat_mumps_icntl_7 6 unless the
+  // user sets it); -exactpd_monitor prints the residual of every iteration.
   //
   // With `pressure` (NewtonPressure), each iteration solves the saddle point with the pressure
   // instead (solve_saddle), and a rigid cell's incompressibility is taken in the same augmented
