@@ -441,7 +441,6 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   const Box& b = g_.box();
   GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
   double wl2 = 0, wmax = 0;
-  wref_ = 0;
   const size_t ncell = static_cast<size_t>(b.xm) * b.ym;
   if (active_.size() != 3 * ncell) active_.assign(3 * ncell, 0);  // the cells, then their faces
   double wchanges = 0;
@@ -462,8 +461,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   lin_.assign(static_cast<size_t>(b.xm) * b.ym * 5, 0.0);
   double changes = 0;
   if (pres_) prox_.assign(static_cast<size_t>(b.xm) * b.ym, 0.0);
-  // max and sum of squares of |S - P(S + c E u)| (and walls'), and the max with the step's own c
-  double loc[3] = {wmax, wl2, wref_};
+  double loc[2] = {wmax, wl2};  // max and sum of squares of |S - P(S + c E u)| (and walls')
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       const size_t cell = static_cast<size_t>((j - b.ys) * b.xm + (i - b.xs));
@@ -479,17 +477,6 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
         // (solve_saddle): c |div u| joins its residual (0 in a yielded cell after a solve).
         const double dv = pres_ ? cc * (d[j][i][0] + d[j][i][2]) : 0.0;
         const double r = std::hypot(std::hypot(s[0] - f * q[0], s[1] - f * q[1]), dv);
-        if (ref_scale_ != 1) {  // the stopping test's residual, with the step's own c
-          const double cr0 = cc * ref_scale_;
-          const double qr[2] = {s[0] + cr0 * 0.5 * (d[j][i][0] - d[j][i][2]),
-                                s[1] + cr0 * d[j][i][1]};
-          const double nr = std::hypot(qr[0], qr[1]);
-          const double fr = nr > 1 ? 1 / nr : 1.0;
-          loc[2] = std::max(loc[2], std::hypot(std::hypot(s[0] - fr * qr[0], s[1] - fr * qr[1]),
-                                               dv * ref_scale_));
-        } else {
-          loc[2] = std::max(loc[2], r);
-        }
         if (r > worst_.r) worst_ = {r, static_cast<int>(i), static_cast<int>(j), 0, nq};
         loc[0] = std::max(loc[0], r);
         loc[1] += r * r;
@@ -536,7 +523,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   GF_PETSC(MatAssemblyBegin(M_, MAT_FINAL_ASSEMBLY));
   GF_PETSC(MatAssemblyEnd(M_, MAT_FINAL_ASSEMBLY));
   active_changes_ = g_.sum(changes + wchanges);
-  return {g_.max(loc[0]), std::sqrt(g_.sum(loc[1])), g_.max(loc[2])};
+  return {g_.max(loc[0]), std::sqrt(g_.sum(loc[1]))};
 }
 
 double ExactPlasticStep::refresh_kappa_b(Vec u) {
@@ -583,10 +570,6 @@ double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, dou
     const double cb = cn[f] / kb[f];
     const double qq = sw[f] + cb * uu[f];
     const double r = std::abs(sw[f] - std::clamp(qq, -1.0, 1.0));
-    wref_ = std::max(wref_, ref_scale_ == 1 ? r
-                                            : std::abs(sw[f] - std::clamp(sw[f] + cb * ref_scale_ *
-                                                                              uu[f],
-                                                                          -1.0, 1.0)));
     if (r > worst_.r) worst_ = {r, static_cast<int>(i), static_cast<int>(j), q + 1, qq};
     mx = std::max(mx, r);
     l2 += r * r;
@@ -670,8 +653,6 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     GF_PETSC(MatMultAdd(m.B, u, m.d0, D_));
     walls_->refresh(D_, lambda_, walls_->kappa_b);
   }
-  double c_scale = 1;  // c and c_b times this, after the restarts
-  ref_scale_ = 1;
   Residual res = linearise(u, opt);
   jacobian_pattern(A);  // every 3 x 3 block of M is full: linearise sets them all
   GF_PETSC(KSPSetFromOptions(ksp_));
@@ -695,7 +676,6 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     }
   }
   double best = std::numeric_limits<double>::infinity();  // the best iterate's residual max
-  const double restart_c = opt.restart_c;
   bool full_next = true;  // the first iteration of a step solves on every row
   int local_since_full = 0;
   // Options set here, not at construction, so that a run that does not use them is not warned
@@ -727,18 +707,17 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   PetscBool monitor = PETSC_FALSE;
   GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_monitor", &monitor));
   for (int it = 0;; ++it) {
-    st.change = res.ref;
+    st.change = res.max;
     if (monitor)
       GF_PETSC(PetscPrintf(g_.comm(),
-                           "  exact plastic step: iteration %d, residual max %.3e, 2-norm %.3e "
-                           "(max with the step's own c %.3e), %d halvings, %.0f active-set "
-                           "changes\n",
-                           it, res.max, res.l2, res.ref, st.backtracks, active_changes_));
+                           "  exact plastic step: iteration %d, residual max %.3e, 2-norm %.3e, "
+                           "%d halvings, %.0f active-set changes\n",
+                           it, res.max, res.l2, st.backtracks, active_changes_));
     if (monitor) print_worst();
     // After a solve the momentum equation holds with the updated S (the linear system is that
     // equation), so what is left is the projection's residual; before the first solve the
     // momentum equation is not known to hold.
-    if (it > 0 && res.ref <= opt.tol && !full_next && is_loc_ && local_since_full > 0) {
+    if (it > 0 && res.max <= opt.tol && !full_next && is_loc_ && local_since_full > 0) {
       // Converged on the local rows: the rows outside them are frozen at the last full solve,
       // and must still satisfy the momentum equation with the final S.
       const double mr = momentum_residual(u);
@@ -747,7 +726,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
                              mr));
       if (mr > opt.momentum_rtol) full_next = true;
     }
-    if (it > 0 && (res.ref <= opt.tol || tail) && !(full_next && is_loc_)) {
+    if (it > 0 && (res.max <= opt.tol || tail) && !(full_next && is_loc_)) {
       // Converged with kappa_b fixed: refresh kappa_b (a fixed point on kappa_b, whose
       // derivative is not in the Jacobian). While it changes by more than 1 %, the next
       // problem is solved to tol with kappa_b fixed again; below, kappa_b is refreshed from
@@ -765,7 +744,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
                              "  exact plastic step: kappa_b refreshed, max change %.3e of its "
                              "max\n",
                              dk));
-      if (dk <= opt.kappa_b_tol && res.ref <= opt.tol) {
+      if (dk <= opt.kappa_b_tol && res.max <= opt.tol) {
         st.converged = true;
         break;
       }
@@ -778,48 +757,23 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       tail = dk < 1e-2;
       ++st.refreshes;
     }
-    if (it > 0 && res.ref < best) {  // the best iterate so far (after a solve)
-      best = res.ref;
+    if (it > 0 && res.max < best) {  // the best iterate so far (after a solve)
+      best = res.max;
       GF_PETSC(VecCopy(u, u_best_));
       GF_PETSC(VecCopy(lambda_, S_best_));
       if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_best_));
     }
-    const bool restart_now = it == opt.restart_at ||
-                             (opt.restart_every > 0 && it > opt.restart_at &&
-                              (it - opt.restart_at) % opt.restart_every == 0);
-    if (restart_c > 0 && restart_now && !pres_ && !(walls_ && walls_->refresh)) {
-      // A step not converged by now: again from its best iterate, with c and c_b scaled by
-      // restart_c once more (see ExactStepOptions::restart_c).
-      GF_PETSC(VecCopy(u_best_, u));
-      GF_PETSC(VecCopy(S_best_, lambda_));
-      if (walls_) GF_PETSC(VecCopy(sw_best_, walls_->s_wall));
-      GF_PETSC(VecScale(c_, restart_c));
-      if (walls_) GF_PETSC(VecScale(walls_->c_num, restart_c));
-      c_scale *= restart_c;
-      ref_scale_ = 1 / c_scale;
-      boost_ = 1;
-      calm = 0;
-      window.clear();
-      // The next solve on the local rows, if any: the rows outside them hold the last full
-      // solve's values (no plastic term there, whatever c), and a step still converges only
-      // with the momentum residual over all rows. A full solve after each restart cost case A
-      // at n = 64 (restarts every 10 from 15, first 50 steps) 85 s against 60 s with the same
-      // iterates (the stopping test then still used the restarted c, see Residual::ref).
-      std::fill(active_.begin(), active_.end(), 0);
-      res = linearise(u, opt);  // J's pattern is the same: M's is fixed for the step
-      if (monitor)
-        GF_PETSC(PetscPrintf(g_.comm(), "  exact plastic step: again from the best iterate, c x %g\n",
-                             restart_c));
-    }
+    // (Restarts from the best iterate with a smaller c were tried until 2026-12-06: with the
+    // stopping test at the step's own c they capped more steps, not fewer; docs/RHEOLOGY.md.)
     if (it == opt.max_outer) {
       // Capped: end at the best iterate rather than the last (the last can be any point of a
       // cycle: on case A at n = 32 the last had a residual of 0.57 where the best had 1.5e-3).
-      if (best < res.ref && !pres_) {
+      if (best < res.max && !pres_) {
         GF_PETSC(VecCopy(u_best_, u));
         GF_PETSC(VecCopy(S_best_, lambda_));
         if (walls_) GF_PETSC(VecCopy(sw_best_, walls_->s_wall));
         res = linearise(u, opt);
-        st.change = res.ref;
+        st.change = res.max;
       }
       break;
     }
@@ -910,11 +864,6 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_prev_));
   }
   GF_PETSC(VecCopy(lambda_, S));
-  ref_scale_ = 1;
-  if (c_scale != 1) {
-    GF_PETSC(VecScale(c_, 1 / c_scale));
-    if (walls_) GF_PETSC(VecScale(walls_->c_num, 1 / c_scale));
-  }
   return st;
 }
 

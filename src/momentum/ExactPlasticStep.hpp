@@ -94,28 +94,6 @@ struct ExactStepOptions {
   // residual over all rows, |A u - b - C Pi kappa S + walls| <= momentum_rtol |b| (2-norms);
   // otherwise its next iteration is a full solve.
   double momentum_rtol = 1e-10;
-  // solve_newton without the pressure or the walls' refresh: a step not converged after
-  // restart_at iterations starts again from its best iterate with c (and the walls' c_b) times
-  // restart_c (0: never). The answer does not depend on c; the classification q = S + c E u
-  // does: a smaller c weighs the multiplier S more than the strain rate, which calms a cell at
-  // its yield limit (|S| = 1 with E u = 0, where the iterates of case A at n = 16 hovered at
-  // |q| - 1 = 1e-5 to 1e-4 for 100 iterations next to the rough bottom while back-wall faces
-  // changed between sticking and sliding). Case A at n = 16 to 1.06 s, started from the last
-  // prediction: 1 step capped without, none with (5,518 iterations against 5,520); case B: the
-  // same 5,212 iterations; c x 10 capped 3 of case A's first 600 steps. A step still not
-  // converged starts again from its best iterate every restart_every iterations after that, c
-  // scaled by restart_c each time (0: once only): case A at n = 32 to 0.3 s, 0 of 300 steps
-  // capped and 6,557 iterations with 20, against 9 capped (up to 7.4e-6 left) and 6,997 once.
-  // Those measurements stopped a restarted step by its residual with the restarted c, looser
-  // by up to 1 / restart_c per restart (Residual::ref). With the step's own c in the test
-  // (2026-12-06, sixth session) the restarts cost more than they give, so they are off
-  // (restart_c = 0): case A at n = 32 to 0.3 s, 19 of 300 steps capped (largest residual left
-  // 3.7e-5) and 8,581 iterations with them, 3 capped (2.0e-6, newton_tol 1e-6) and 7,025
-  // without; at n = 64, its first 50 steps, 5 capped and 2,448 against 2 and 2,180; at n = 16
-  // to 1.06 s none capped either way (5,392 and 5,790 iterations).
-  int restart_at = 40;
-  double restart_c = 0;
-  int restart_every = 20;
   // NewtonPlastic: the margin of the local rows in cells (solver.viscous_local_margin; 0 = every
   // Newton system solved on every row).
   int local_margin = 0;
@@ -312,14 +290,7 @@ class ExactPlasticStep {
   void newton_update_walls(Vec u);
   struct Residual {
     double max, l2;  // of |lambda - P(lambda + c E u)| over the cells
-    // The max with the c the step was given (not the restarts' smaller one): the stopping
-    // test's. For c' < c, |S - P(S + c' E u)| <= |S - P(S + c E u)| <= (c / c') |S - P(S + c' E u)|:
-    // a test with the restarted c would be looser by up to 1 / restart_c per restart.
-    double ref;
   };
-  // c the step was given over the c of the iteration (1 / the restarts' scaling of c_), and the
-  // walls' part of Residual::ref in the last linearisation.
-  double ref_scale_ = 1, wref_ = 0;
   // Linearises at (u, lambda_): M_ = Pi kappa G L, T_ = Pi kappa (S0 + G L d0), lin_; returns
   // the residual there. Collective.
   Residual linearise(Vec u, const ExactStepOptions& opt);

@@ -161,11 +161,10 @@ void declare_physics(Params& p) {
   p.add_real("rheology.newton_tol", "", 1e-6, Range::gt(0),
              "rheology.solver = newton: stop when max |S - P(S + r kappa D)| over the cells and "
              "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this.");
-  // 160, not 100: a step not converged restarts from its best iterate at 40 iterations and
-  // every 20 after with a smaller c (ExactStepOptions::restart_every); case A at n = 128 capped
-  // 2 of its first 13 steps at 100 (the first steps from rest, 3.7e-6 left) and none at 160
-  // (101 iterations at most). A step that converges never reaches the cap, so the figures of
-  // the runs that capped no step are the same.
+  // 160, not 100: case A at n = 128 capped 2 of its first 13 steps at 100 (the first steps from
+  // rest, 3.7e-6 left) and none at 160 (101 iterations at most), measured with the restarts
+  // removed on 2026-12-06, whose stopping test was looser (docs/RHEOLOGY.md). A step that
+  // converges never reaches the cap, so the figures of the runs that capped no step are the same.
   p.add_int("rheology.newton_max_iter", "", 160, closed(1, 1e6),
             "rheology.solver = newton: most Newton iterations per time step (a step that "
             "reaches it is counted as capped, like the fixed point's).");
