@@ -578,7 +578,8 @@ double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, dou
     if (cls != 0 && cls != (stick ? 1 : 2)) ++changes;
     cls = stick ? 1 : 2;
     const double s0 = stick ? sw[f] : (qq > 0 ? 1.0 : -1.0);
-    const double gg = stick ? boost_ * opt.wall_rigid_factor * cb : 0.0;
+    const double gg =
+        stick ? std::min(boost_, opt.wall_boost_max) * opt.wall_rigid_factor * cb : 0.0;
     linw_[2 * f] = s0;
     linw_[2 * f + 1] = gg;
     wd[f] = kb[f] * gg / h;
@@ -846,8 +847,8 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     window.push_back(res.l2);
     // Once the active sets have stayed the same for two iterations, what is left is the
     // proximal drift of the rigid cells' S and the sticking faces' s_t (not unique there): their
-    // steps grow tenfold per iteration up to rigid_boost_max, towards Newton's own E u = 0 and
-    // u_t = 0; back to 1 as soon as the active sets change (a large step from the start slows
+    // steps grow tenfold per iteration up to rigid_boost_max (the faces' up to wall_boost_max),
+    // towards Newton's own E u = 0 and u_t = 0; back to 1 as soon as the active sets change (a large step from the start slows
     // the active-set search: rigid_factor 1e5 instead of 1e4 capped more steps, not fewer).
     calm = active_changes_ > 0 ? 0 : calm + 1;
     if (calm >= 2 && boost_ < opt.rigid_boost_max) {

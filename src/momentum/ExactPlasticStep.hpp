@@ -74,11 +74,21 @@ struct ExactStepOptions {
   // multipliers drift along it, and the residual left is that drift over this factor: at 1e4
   // the iteration stalled at 3e-7, at 1e6 the residual moves to the rigid cells (1e-8).
   double wall_rigid_factor = 1e6;
-  // solve_newton: the largest factor on rigid_factor and wall_rigid_factor once the active sets
-  // have stopped changing (see solve_newton; 1: off). Measured on case A at n = 16 to 1.06 s
+  // solve_newton: the largest factor on rigid_factor once the active sets have stopped
+  // changing (see solve_newton; 1: off). (These figures were measured with the sticking wall
+  // faces boosted too, and with the looser stopping test of before 2026-12-06.) Measured on case A at n = 16 to 1.06 s
   // (the walls' load from the step's start): 9 of 1060 steps capped without it, 0 with 1e4
   // (47 s instead of 68 s); at n = 32 to 0.1 s, 34 of 100 and 10.
   double rigid_boost_max = 1e4;
+  // The same for the sticking wall faces alone (1: their step stays wall_rigid_factor c_b).
+  // Boosted like the cells, a sticking face's step reached 1e10 c_b, and the direct solve's
+  // round-off in u_t then moved s_t by up to 1 between two iterations (case A at n = 32, a
+  // left-wall face at q = -1.019 after an iteration at residual 3e-6, no class changed).
+  // Measured with the stopping test at the step's own c (2026-12-06, seventh session):
+  // case A at n = 32 to 1.06 s, 3 of 1060 steps capped and 10,321 iterations with the faces
+  // boosted to 1e4, 0 and 10,613 at 1; at n = 64, first 100 steps, 7 capped (5,170
+  // iterations) at 1e4, 1 (5,198) at 100 with wall_rigid_factor 1e4, 2 (4,796) at 1.
+  double wall_boost_max = 1;
   // NewtonPlastic: refresh the Coulomb walls' kappa_b from the iterate's S and D (the paper's
   // kappa_b^{n+1}, rheology.newton_wall_load = "iterate"); false: kappa_b from the step's start
   // (p^n, S^n, u^n), fixed like kappa, which makes the step a convex problem with a unique
@@ -187,7 +197,8 @@ class ExactPlasticStep {
   // rise along the whole segment). A step that reaches max_outer ends at its best iterate (the
   // smallest max residual after a solve), not its last. Once the active sets have
   // stayed the same for two iterations, c_R grows tenfold per iteration up to rigid_boost_max
-  // times its value (ExactStepOptions::rigid_boost_max). Stops when max |S - P(S + c E u)| <=
+  // times its value (ExactStepOptions::rigid_boost_max; the sticking wall faces' up to
+  // wall_boost_max). Stops when max |S - P(S + c E u)| <=
   // tol over the cells (the criterion of solve()). Linear solves: KSP prefix -exactpd_,
   // default a direct solve (MUMPS LU, ordering QAMD: -exactpd_mat_mumps_icntl_7 6 unless the
   // user sets it); -exactpd_monitor prints the residual of every iteration.
@@ -298,7 +309,8 @@ class ExactPlasticStep {
   // sticking, 2 yielded or sliding), and how many changed class in it (all ranks).
   std::vector<signed char> active_;
   double active_changes_ = 0;
-  // The factor on the rigid cells' and sticking faces' steps (ExactStepOptions::rigid_boost_max).
+  // The factor on the rigid cells' steps (ExactStepOptions::rigid_boost_max), and, up to
+  // wall_boost_max, on the sticking faces'.
   double boost_ = 1;
   // lambda_ = S0 + G L (B u + d0) from lin_.
   void newton_update(Vec u);
