@@ -89,6 +89,15 @@ struct ExactStepOptions {
   // boosted to 1e4, 0 and 10,613 at 1; at n = 64, first 100 steps, 7 capped (5,170
   // iterations) at 1e4, 1 (5,198) at 100 with wall_rigid_factor 1e4, 2 (4,796) at 1.
   double wall_boost_max = 1;
+  // solve_newton: after this many iterations in a row whose line search took a step of 1/64
+  // or less, the next takes its Newton point whole (0: never). Where a cell at its yield limit
+  // changes class at every Newton point, the line search's short steps gain nothing: case B at
+  // n = 64 capped 3 of 1360 steps so, the residual creeping at 1.6e-6 to 8.0e-6 with about 7
+  // halvings per iteration over the last 60 (docs/RHEOLOGY.md). Measured at 3: case B at
+  // n = 64 to 1.36 s 0 capped and 18,767 iterations (3 and 19,244 without); case A at n = 64
+  // 2 of 1061 capped (residual left up to 2.9e-5; 2 up to 9.2e-6 without) and 12,676
+  // iterations (13,536); case A at n = 32 0 of 1060 and 10,564 (0 and 10,613).
+  int creep_steps = 3;
   // NewtonPlastic: refresh the Coulomb walls' kappa_b from the iterate's S and D (the paper's
   // kappa_b^{n+1}, rheology.newton_wall_load = "iterate"); false: kappa_b from the step's start
   // (p^n, S^n, u^n), fixed like kappa, which makes the step a convex problem with a unique
@@ -194,7 +203,8 @@ class ExactPlasticStep {
   // (on case A at n = 16 the halvings then slowed the bottom row's cells at the yield limit to
   // a linear tail: 17 capped steps of 300 with them, 10 without). If ten halvings find no decrease,
   // the Newton point is taken after all (a face or cell at its threshold can make the residual
-  // rise along the whole segment). A step that reaches max_outer ends at its best iterate (the
+  // rise along the whole segment), and so is it after creep_steps short steps in a row
+  // (ExactStepOptions::creep_steps). A step that reaches max_outer ends at its best iterate (the
   // smallest max residual after a solve), not its last. Once the active sets have
   // stayed the same for two iterations, c_R grows tenfold per iteration up to rigid_boost_max
   // times its value (ExactStepOptions::rigid_boost_max; the sticking wall faces' up to
