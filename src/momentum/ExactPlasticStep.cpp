@@ -838,15 +838,16 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
         ++st.backtracks;
       }
       short_steps = whole ? 0 : (tau_taken <= 1.0 / 64 ? short_steps + 1 : 0);
-      if (res.l2 >= (1 - 1e-4 / 512) * ref) {
+      if (whole && res.l2 >= (1 - 1e-4 / 512) * ref) {
+        // A whole step without decrease is kept, and the iteration counts as calm: no class
+        // is taken to have changed (the measurements of creep_steps were made so).
+        active_changes_ = 0;
+      } else if (res.l2 >= (1 - 1e-4 / 512) * ref) {
         // No decrease down to the shortest step: take the Newton point. Steps of 1/1024 make
         // no progress, and at a face or cell at its threshold the residual can rise along the
         // whole segment (case A at n = 16, a bottom wall face at q = 1.000002: the residual
         // crept from 1.1e-6 to 3.3e-6 over 70 such steps and the step was capped; with the
-        // Newton point 0 of 600 steps capped, 7981 iterations instead of 8362). The same
-        // after a whole step without decrease: the linearisation again at the same point
-        // finds no class changed since the last, so the iteration counts as calm (the
-        // measurements of creep_steps were made so).
+        // Newton point 0 of 600 steps capped, 7981 iterations instead of 8362).
         GF_PETSC(VecCopy(u_newton_, u));
         GF_PETSC(VecCopy(S_newton_, lambda_));
         if (walls_) GF_PETSC(VecCopy(sw_newton_, walls_->s_wall));
@@ -858,8 +859,9 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     // Once the active sets have stayed the same for two iterations, what is left is the
     // proximal drift of the rigid cells' S and the sticking faces' s_t (not unique there): their
     // steps grow tenfold per iteration up to rigid_boost_max (the faces' up to wall_boost_max),
-    // towards Newton's own E u = 0 and u_t = 0; back to 1 as soon as the active sets change (a large step from the start slows
-    // the active-set search: rigid_factor 1e5 instead of 1e4 capped more steps, not fewer).
+    // towards Newton's own E u = 0 and u_t = 0; back to 1 as soon as the active sets change (a
+    // large step from the start slows the active-set search: rigid_factor 1e5 instead of 1e4
+    // capped more steps, not fewer).
     calm = active_changes_ > 0 ? 0 : calm + 1;
     if (calm >= 2 && boost_ < opt.rigid_boost_max) {
       boost_ = std::min(boost_ * 10, opt.rigid_boost_max);

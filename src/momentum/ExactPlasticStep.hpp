@@ -75,10 +75,10 @@ struct ExactStepOptions {
   // the iteration stalled at 3e-7, at 1e6 the residual moves to the rigid cells (1e-8).
   double wall_rigid_factor = 1e6;
   // solve_newton: the largest factor on rigid_factor once the active sets have stopped
-  // changing (see solve_newton; 1: off). (These figures were measured with the sticking wall
-  // faces boosted too, and with the looser stopping test of before 2026-12-06.) Measured on case A at n = 16 to 1.06 s
-  // (the walls' load from the step's start): 9 of 1060 steps capped without it, 0 with 1e4
-  // (47 s instead of 68 s); at n = 32 to 0.1 s, 34 of 100 and 10.
+  // changing (see solve_newton; 1: off). Measured on case A at n = 16 to 1.06 s (the walls'
+  // load from the step's start): 9 of 1060 steps capped without it, 0 with 1e4 (47 s instead
+  // of 68 s); at n = 32 to 0.1 s, 34 of 100 and 10 (these with the sticking wall faces boosted
+  // too, and with the looser stopping test of before 2026-12-06).
   double rigid_boost_max = 1e4;
   // The same for the sticking wall faces alone (1: their step stays wall_rigid_factor c_b).
   // Boosted like the cells, a sticking face's step reached 1e10 c_b, and the direct solve's
