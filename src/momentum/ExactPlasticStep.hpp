@@ -166,6 +166,7 @@ struct ExactStepStats {
   bool converged = false;
   int local = 0;          // solve_newton: iterations solved on the local rows
   int full = 0;           // solve_newton: iterations solved on every row
+  bool cholesky = false;  // solve_newton: its factorisations were Cholesky (not LU)
 };
 
 class ExactPlasticStep {
@@ -210,7 +211,8 @@ class ExactPlasticStep {
   // times its value (ExactStepOptions::rigid_boost_max; the sticking wall faces' up to
   // wall_boost_max). Stops when max |S - P(S + c E u)| <=
   // tol over the cells (the criterion of solve()). Linear solves: KSP prefix -exactpd_,
-  // default a direct solve (MUMPS LU, ordering QAMD: -exactpd_mat_mumps_icntl_7 6 unless the
+  // default a direct solve (MUMPS Cholesky where A is symmetric, else LU; ordering QAMD:
+  // -exactpd_mat_mumps_icntl_7 6 unless the
   // user sets it); -exactpd_monitor prints the residual of every iteration.
   //
   // With `pressure` (NewtonPressure), each iteration solves the saddle point with the pressure
@@ -246,6 +248,20 @@ class ExactPlasticStep {
   // MatAXPY's row-by-row insertion for a pattern that is a subset (case A at n = 32: the two
   // MatAXPY per iteration were 11 % of the run's time).
   Mat AJ_ = nullptr;
+  // J_ factorised by Cholesky this step (the default without the pressure, unless
+  // -exactpd_pc_type lu); a failed Cholesky factorisation, or a J that is not symmetric, makes
+  // it LU for the rest of this object's life.
+  bool spd_ = false, cholesky_failed_ = false;
+  // Once per step, before its first Cholesky factorisation: |J - J^T| <= 1e-12 |J| (infinity
+  // norms), else LU from then on (granular cells at a no-slip wall). J's pattern is the step's
+  // (every granular cell's 3 x 3 block, whatever its class), so the first iteration shows it.
+  bool symmetry_checked_ = false;
+  void check_symmetry();
+  void use_lu();  // LU for both KSPs for the rest of the run
+  // The PC of k (after its KSPSetFromOptions): Cholesky (spd_) or LU, with
+  // -exactpd_pc_factor_mat_solver_type or MUMPS; nothing if the user chose another PC.
+  bool pc_auto_ = true;
+  void set_factorisation(KSP k);
   void jacobian_pattern(Mat A);
   // M_ anew, with a zero 3 x 3 block in every cell, or only in those with kappa_ > 0 (new
   // entries elsewhere are then an error). Collective.

@@ -257,6 +257,81 @@ TEST(ExactPlasticStepNewton, BinghamPoiseuilleProfileInAFewIterations) {
   for (Vec* v : {&u1, &u2, &u3}) VecDestroy(v);
 }
 
+// The Newton matrix J = A + B^T Pi kappa G L B is symmetric positive definite where the plastic
+// strain rate and stress divergence are adjoint (B and C, free-slip and Coulomb walls), and its
+// factorisations are then Cholesky (MUMPS, SYM = 1): one time step of a free-slip channel with
+// a force that changes sign across it (a rigid core between two yielded layers) gives LU's
+// answer (-exactpd_pc_type lu) to the stopping tolerance. At no-slip plates they
+// are not adjoint (a factor 2 between J's entries on the two sides of the diagonal in the rows
+// next to the plates: the wall's one-sided shear rate), which the step finds out before its
+// first factorisation: LU instead, and the Bingham Poiseuille profile as before.
+TEST(ExactPlasticStepNewton, CholeskyWhereTheNewtonMatrixIsSymmetricLUWhereNot) {
+  const Grid g = channel(32);
+  const gf::Box& bx = g.box();
+  Vec u[2];
+  gf::momentum::ExactStepStats st[2];
+  for (int lu = 0; lu < 2; ++lu) {
+    gf::Boundaries bc;  // free slip on both plates
+    gf::momentum::Predictor pred(g, bc, 1e-12);
+    Field rho(g.dm_cell(), "rho"), eta(g.dm_cell(), "eta"), kap(g.dm_cell(), "kappa"),
+        c(g.dm_cell(), "c"), b(g.dm_vel(), "b"), S(g.dm_ten(), "S");
+    VecSet(rho, kRho);
+    VecSet(eta, kEta);
+    VecSet(kap, 0.2 * kF * kH);
+    // A time step's mass term (as in case A): the steady problem's is 1e-8, which leaves the
+    // free-slip channel's translation nearly undetermined.
+    const double h = g.hy(), a0dt = 100 * kEta / (kRho * h * h);
+    VecSet(c, 10.0 * (2 * kEta + kRho * a0dt * h * h) / (0.2 * kF * kH));
+    pred.assemble(rho, eta, eta, a0dt);
+    {
+      gf::Vel** a;
+      DMDAVecGetArray(g.dm_vel(), b, &a);
+      for (PetscInt j = bx.ys; j < bx.ye(); ++j)
+        for (PetscInt i = bx.xs; i < bx.xe(); ++i) {
+          a[j][i].u = kF * std::cos(M_PI * bx.yc(j) / kH);
+          a[j][i].v = 0;
+        }
+      DMDAVecRestoreArray(g.dm_vel(), b, &a);
+    }
+    gf::momentum::PlasticMatrices m;
+    gf::momentum::assemble_plastic_matrices(g, pred, eta, m);
+    DMCreateGlobalVector(g.dm_vel(), &u[lu]);
+    VecSet(u[lu], 0.0);
+    VecSet(S, 0.0);
+    if (lu) PetscOptionsSetValue(nullptr, "-exactpd_pc_type", "lu");
+    gf::momentum::ExactPlasticStep step(g);
+    st[lu] = step.solve_newton(pred.matrix(), b, m, kap, c, u[lu], S);
+    if (lu) PetscOptionsClearValue(nullptr, "-exactpd_pc_type");
+  }
+  double n, d;
+  VecNorm(u[0], NORM_INFINITY, &n);
+  VecAXPY(u[1], -1.0, u[0]);
+  VecNorm(u[1], NORM_INFINITY, &d);
+  PetscPrintf(PETSC_COMM_WORLD,
+              "Newton, free-slip channel: Cholesky %d iterations, LU %d; max |u_chol - u_lu| / "
+              "max |u| = %.1e (max |u| %.2e m/s)\n",
+              st[0].newton, st[1].newton, d / n, n);
+  EXPECT_TRUE(st[0].converged);
+  EXPECT_TRUE(st[1].converged);
+  EXPECT_TRUE(st[0].cholesky);
+  EXPECT_FALSE(st[1].cholesky);
+  EXPECT_GT(n, 0);
+  // Measured 1.0e-10 on 1 rank: both stop at tol = 1e-10 from their own round-off (the rigid
+  // cells' steps, up to 1e8 c, amplify it: c factor 3 against 30 above differ by 2.4e-10).
+  EXPECT_LT(d / n, 1e-8);
+  for (Vec& v : u) VecDestroy(&v);
+
+  const Result r = steady(g, 0.2 * kF * kH, 10.0, nullptr, true);
+  PetscOptionsClearValue(nullptr, "-exactpd_pc_type");  // use_lu set it for the process
+  PetscPrintf(PETSC_COMM_WORLD,
+              "Newton, no-slip plates: Cholesky %d, %d iterations, max |u - exact| / max exact "
+              "= %.2e\n",
+              r.st.cholesky ? 1 : 0, r.st.newton, r.err);
+  EXPECT_TRUE(r.st.converged);
+  EXPECT_FALSE(r.st.cholesky);
+  EXPECT_LT(r.err, 1e-2);
+}
+
 // The pressure in the Newton system (NewtonPressure): with a vertical body force -rho g besides
 // f, the velocity is the same Bingham Poiseuille profile (the weight is a gradient: v = 0) and
 // the vertical stress sigma_yy = -psi + kappa S_yy averaged over x is hydrostatic,
