@@ -44,7 +44,7 @@ def main():
     ap.add_argument("--out", default="docs/newton_speed.md")
     ap.add_argument("--variants", default="all",
                     help="comma-separated keys of the variants to run (fp always runs): "
-                         "newton, rows, metis; or all")
+                         "newton, rows, metis, lu; or all")
     a = ap.parse_args()
     case = os.path.join(a.src, "cases", "ar07_rough.toml")
     base = [case, "--set", f"grid.n={a.n}", "--set", f"time.t_end={a.t_end}",
@@ -57,7 +57,9 @@ def main():
                  "(solver.viscous_local_margin = 0)",
                  newton + ["--set", "solver.viscous_local_margin=0"], []),
                 ("metis", "newton, MUMPS's METIS ordering (-exactpd_mat_mumps_icntl_7 7; the "
-                 "default QAMD since 2026-12-06)", newton, ["-exactpd_mat_mumps_icntl_7", "7"])]
+                 "default QAMD since 2026-12-06)", newton, ["-exactpd_mat_mumps_icntl_7", "7"]),
+                ("lu", "newton, LU instead of Cholesky (-exactpd_pc_type lu; the default LU "
+                 "until 2026-12-07)", newton, ["-exactpd_pc_type", "lu"])]
     keep = {"fp", *a.variants.split(",")} if a.variants != "all" else {v[0] for v in variants}
     variants = [(name, extra, petsc) for key, name, extra, petsc in variants if key in keep]
     load0 = os.getloadavg()[0]
