@@ -28,7 +28,8 @@ void set_cell_block(Mat M, PetscInt base, double scale, const double G[2][2]) {
                           GL[1][2], -GL[0][0], -GL[0][1], -GL[0][2]};
   GF_PETSC(MatSetValues(M, 3, idx, 3, idx, vals, INSERT_VALUES));
 }
-// A KSP that solves by one LU factorisation (MUMPS), options prefix `prefix`.
+// A KSP that solves by one factorisation (MUMPS; LU here, solve_newton may make it Cholesky),
+// options prefix `prefix`.
 void make_direct_ksp(MPI_Comm comm, const char* prefix, KSP* ksp) {
   GF_PETSC(KSPCreate(comm, ksp));
   GF_PETSC(KSPSetOptionsPrefix(*ksp, prefix));
@@ -91,7 +92,7 @@ KSPConvergedReason direct_solve(KSP ksp, Mat J, Vec rhs, Vec x, bool* to_lu = nu
     GF_PETSC(KSPGetPC(ksp, &pc));
     PCType type;
     GF_PETSC(PCGetType(pc, &type));
-    if (g1 != -9 && g1 != -8 && std::string(type) == PCCHOLESKY) {
+    if (g1 < 0 && g1 != -9 && g1 != -8 && std::string(type) == PCCHOLESKY) {
       // A Cholesky factorisation without pivoting (MUMPS SYM = 1, the matrix flagged SPD) that
       // fails for another reason than its workspace: LU from here on, for this KSP.
       PetscPrintf(PetscObjectComm(reinterpret_cast<PetscObject>(ksp)),
@@ -358,21 +359,54 @@ void ExactPlasticStep::jacobian_pattern(Mat A) {
   if (spd_) set_spd(J_);
 }
 
-void ExactPlasticStep::check_symmetry() {
-  symmetry_checked_ = true;
-  Mat T;
-  GF_PETSC(MatTranspose(J_, MAT_INITIAL_MATRIX, &T));
-  GF_PETSC(MatAXPY(T, -1.0, J_, DIFFERENT_NONZERO_PATTERN));
-  PetscReal asym, norm;
-  GF_PETSC(MatNorm(T, NORM_INFINITY, &asym));
-  GF_PETSC(MatNorm(J_, NORM_INFINITY, &norm));
-  GF_PETSC(MatDestroy(&T));
-  if (asym <= 1e-12 * norm) return;
-  PetscPrintf(g_.comm(),
-              "granflow: note: the exact plastic step's Newton matrix is not symmetric "
-              "(|J - J^T| = %.2e of |J|); LU instead of Cholesky\n",
-              static_cast<double>(asym / norm));
-  use_lu();
+bool ExactPlasticStep::newton_matrix_symmetric(Mat A) {
+  // J = A - C M B with M = Pi kappa G L per cell: symmetric for every G (symmetric in each cell)
+  // when A is and C = -B^T W on the columns of the cells with a yield stress (W = diag(1, 2, 1);
+  // PlasticMatrices.hpp). Checked on B and C themselves, not on J: a J of one iteration can
+  // hide the difference (a yielded cell at a no-slip wall in pure shear has G's shear column
+  // near 0, and can turn rigid later in the step).
+  if (!a_checked_) {  // A's pattern and kind are the run's; its values change every step
+    a_checked_ = true;
+    PetscBool sym = PETSC_FALSE;
+    GF_PETSC(MatIsSymmetric(A, 1e-12, &sym));
+    a_symmetric_ = sym;
+  }
+  if (!a_symmetric_) return false;
+  Vec w, mask;
+  GF_PETSC(VecDuplicate(lambda_, &w));
+  GF_PETSC(VecDuplicate(lambda_, &mask));
+  {
+    const Box& b = g_.box();
+    const PetscScalar** k;
+    PetscScalar ***ww, ***mm;
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), kappa_, &k));
+    GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), w, &ww));
+    GF_PETSC(DMDAVecGetArrayDOF(g_.dm_ten(), mask, &mm));
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        const double on = k[j][i] > 0 ? 1.0 : 0.0;
+        mm[j][i][0] = mm[j][i][1] = mm[j][i][2] = on;
+        ww[j][i][0] = ww[j][i][2] = on;
+        ww[j][i][1] = 2 * on;
+      }
+    GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), mask, &mm));
+    GF_PETSC(DMDAVecRestoreArrayDOF(g_.dm_ten(), w, &ww));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), kappa_, &k));
+  }
+  Mat E, Bt;
+  GF_PETSC(MatTranspose(m_->B, MAT_INITIAL_MATRIX, &Bt));
+  GF_PETSC(MatDiagonalScale(Bt, nullptr, w));  // B^T W on the grains' columns
+  GF_PETSC(MatDuplicate(m_->C, MAT_COPY_VALUES, &E));
+  GF_PETSC(MatDiagonalScale(E, nullptr, mask));
+  PetscReal cn, en;
+  GF_PETSC(MatNorm(E, NORM_INFINITY, &cn));
+  GF_PETSC(MatAXPY(E, 1.0, Bt, DIFFERENT_NONZERO_PATTERN));
+  GF_PETSC(MatNorm(E, NORM_INFINITY, &en));
+  GF_PETSC(MatDestroy(&E));
+  GF_PETSC(MatDestroy(&Bt));
+  GF_PETSC(VecDestroy(&w));
+  GF_PETSC(VecDestroy(&mask));
+  return en <= 1e-12 * cn;
 }
 
 void ExactPlasticStep::use_lu() {
@@ -740,21 +774,35 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   {
     // J = A + B^T Pi kappa G L B + the walls' diagonal: with A symmetric positive definite
     // (the viscous operator, Predictor), every cell's G symmetric positive semi-definite
-    // (gamma (I - n n^T), or c_R I) and B, C adjoint (C = -B^T Pi, as at free-slip and Coulomb
-    // walls; not at no-slip walls, whose one-sided shear rate makes J's entries differ by a
-    // factor 2 across the diagonal), J is symmetric positive definite, and is factorised by
-    // Cholesky (MUMPS, SYM = 1 with J flagged SPD) instead of LU. check_symmetry() makes sure
-    // before the first factorisation. Measured on case A at n = 64, its first 20 steps:
+    // (gamma (I - n n^T), or c_R I) and C = -B^T W on the grains (free-slip, periodic and
+    // Coulomb walls; not at no-slip walls, whose extrapolated shear stress in C is not the
+    // adjoint of B's, nor at Navier walls: PlasticMatrices.hpp), J is symmetric positive
+    // definite, and is factorised by Cholesky (MUMPS, SYM = 1 with J flagged SPD: no pivoting)
+    // instead of LU. newton_matrix_symmetric() makes sure at every step. Measured on case A at
+    // n = 64, its first 20 steps:
     // 11.0 ms per factorisation against 16.0 ms by LU, the solves 2.0 ms both
     // (docs/RHEOLOGY.md). -exactpd_pc_type lu: LU; another PC: the options' own.
-    char type[64] = "";
+    char type[64] = "", solver[64] = MATSOLVERMUMPS;
     PetscBool set = PETSC_FALSE;
     GF_PETSC(PetscOptionsGetString(nullptr, "exactpd_", "-pc_type", type, sizeof type, &set));
+    GF_PETSC(PetscOptionsGetString(nullptr, "exactpd_", "-pc_factor_mat_solver_type", solver,
+                                   sizeof solver, nullptr));
     const std::string t = type;
     pc_auto_ = !set || t == PCCHOLESKY || t == PCLU;
-    spd_ = !pres_ && !cholesky_failed_ && (!set || t == PCCHOLESKY);
-    symmetry_checked_ = false;  // every step: its granular cells may have reached a no-slip wall
+    // Cholesky by MUMPS only (UMFPACK and KLU have no Cholesky in PETSc 3.18).
+    spd_ = !pres_ && !cholesky_failed_ && (!set || t == PCCHOLESKY) &&
+           std::string(solver) == MATSOLVERMUMPS;
   }
+  if (spd_ && !newton_matrix_symmetric(A)) {
+    PetscPrintf(g_.comm(),
+                "granflow: note: the exact plastic step's Newton matrix is not symmetric (the "
+                "grains at a no-slip or Navier wall, where the plastic stress's divergence is "
+                "not the adjoint of the strain rate); LU instead of Cholesky from here on\n");
+    use_lu();
+  }
+  // The PC's type before the options are read (so that its -exactpd_pc_factor_* options stay)
+  // and after (-exactpd_pc_type may have changed it).
+  set_factorisation(ksp_);
   GF_PETSC(KSPSetFromOptions(ksp_));
   set_factorisation(ksp_);
   Residual res = linearise(u, opt);
@@ -775,6 +823,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     if (n_loc > 0 && n_loc < n_all) {
       GF_PETSC(ISCreateGeneral(g_.comm(), static_cast<PetscInt>(rows.size()), rows.data(),
                                PETSC_COPY_VALUES, &is_loc_));
+      set_factorisation(ksp_loc_);
       GF_PETSC(KSPSetFromOptions(ksp_loc_));
       set_factorisation(ksp_loc_);
     }
@@ -875,7 +924,6 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       ++st.local;
       ++local_since_full;
     } else {
-      if (spd_ && !symmetry_checked_) check_symmetry();
       full_next = false;
       local_since_full = 0;
       ++st.full;
@@ -961,7 +1009,15 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_prev_));
   }
   GF_PETSC(VecCopy(lambda_, S));
-  st.cholesky = spd_;
+  {
+    PC pc;
+    PCType type;
+    GF_PETSC(KSPGetPC(ksp_, &pc));
+    GF_PETSC(PCGetType(pc, &type));
+    PetscBool known = PETSC_FALSE, spd = PETSC_FALSE;
+    if (J_) GF_PETSC(MatIsSPDKnown(J_, &known, &spd));
+    st.cholesky = std::string(type) == PCCHOLESKY && known && spd;
+  }
   return st;
 }
 

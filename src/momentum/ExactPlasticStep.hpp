@@ -166,7 +166,7 @@ struct ExactStepStats {
   bool converged = false;
   int local = 0;          // solve_newton: iterations solved on the local rows
   int full = 0;           // solve_newton: iterations solved on every row
-  bool cholesky = false;  // solve_newton: its factorisations were Cholesky (not LU)
+  bool cholesky = false;  // solve_newton: ended with a Cholesky PC and its matrix flagged SPD
 };
 
 class ExactPlasticStep {
@@ -211,9 +211,9 @@ class ExactPlasticStep {
   // times its value (ExactStepOptions::rigid_boost_max; the sticking wall faces' up to
   // wall_boost_max). Stops when max |S - P(S + c E u)| <=
   // tol over the cells (the criterion of solve()). Linear solves: KSP prefix -exactpd_,
-  // default a direct solve (MUMPS Cholesky where A is symmetric, else LU; ordering QAMD:
-  // -exactpd_mat_mumps_icntl_7 6 unless the
-  // user sets it); -exactpd_monitor prints the residual of every iteration.
+  // default a direct solve (MUMPS: Cholesky where the Newton matrix is symmetric, else LU;
+  // ordering QAMD: -exactpd_mat_mumps_icntl_7 6 unless the user sets it); -exactpd_monitor
+  // prints the residual of every iteration.
   //
   // With `pressure` (NewtonPressure), each iteration solves the saddle point with the pressure
   // instead (solve_saddle), and a rigid cell's incompressibility is taken in the same augmented
@@ -252,12 +252,12 @@ class ExactPlasticStep {
   // -exactpd_pc_type lu); a failed Cholesky factorisation, or a J that is not symmetric, makes
   // it LU for the rest of this object's life.
   bool spd_ = false, cholesky_failed_ = false;
-  // Once per step, before its first Cholesky factorisation: |J - J^T| <= 1e-12 |J| (infinity
-  // norms), else LU from then on (granular cells at a no-slip wall). J's pattern is the step's
-  // (every granular cell's 3 x 3 block, whatever its class), so the first iteration shows it.
-  bool symmetry_checked_ = false;
-  void check_symmetry();
-  void use_lu();  // LU for both KSPs for the rest of the run
+  // Whether J is symmetric for every G: A symmetric (checked once: a_checked_, a_symmetric_)
+  // and C = -B^T W on the columns of the cells with a yield stress (every step: the grains may
+  // have reached a no-slip wall). Collective.
+  bool a_checked_ = false, a_symmetric_ = false;
+  bool newton_matrix_symmetric(Mat A);
+  void use_lu();  // LU for both KSPs from now on (this object)
   // The PC of k (after its KSPSetFromOptions): Cholesky (spd_) or LU, with
   // -exactpd_pc_factor_mat_solver_type or MUMPS; nothing if the user chose another PC.
   bool pc_auto_ = true;
