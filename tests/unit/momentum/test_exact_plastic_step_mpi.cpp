@@ -446,7 +446,11 @@ TEST(ExactPlasticStepNewton, AnLUOutOfWorkspaceIsFactorisedAgainWithMore) {
   EXPECT_TRUE(r1.st.converged);
   EXPECT_TRUE(set);
   EXPECT_GT(after, 20);  // the first factorisation ran out, so the step raised it
-  EXPECT_LT(d / n, 1e-10);
+  // 0 on an idle machine; on 2 ranks beside other jobs once 7.5e-10 (2026-12-07, a fresh
+  // clone's suite with two runs beside it: 47 iterations against 31). MUMPS's dynamic
+  // scheduling on 2 ranks can change the factors' round-off, the active-set search then takes
+  // another path, and both stop at tol 1e-10 (the c factors' runs above differ by 6e-8).
+  EXPECT_LT(d / n, 1e-8);
   VecDestroy(&u0);
   VecDestroy(&u1);
 }
