@@ -357,6 +357,8 @@ void ExactPlasticStep::jacobian_pattern(Mat A) {
   GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));  // A in the union of the patterns
   GF_PETSC(MatDuplicate(J_, MAT_COPY_VALUES, &AJ_));
   if (spd_) set_spd(J_);
+  map_.clear();  // fill_jacobian's map, for this pattern
+  map_built_ = false;
 }
 
 bool ExactPlasticStep::newton_matrix_symmetric(Mat A) {
@@ -427,9 +429,77 @@ void ExactPlasticStep::set_factorisation(KSP k) {
   GF_PETSC(PCFactorSetMatSolverType(pc, solver));
 }
 
+namespace {
+// The local blocks of an AIJ matrix: (diag, offdiag, garray) on more ranks; (M, null, null) on
+// one.
+void local_blocks(Mat M, Mat* d, Mat* o, const PetscInt** garray) {
+  PetscBool mpi = PETSC_FALSE;
+  GF_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(M), MATMPIAIJ, &mpi));
+  if (mpi) {
+    GF_PETSC(MatMPIAIJGetSeqAIJ(M, d, o, garray));
+  } else {
+    *d = M;
+    *o = nullptr;
+    *garray = nullptr;
+  }
+}
+// For each entry of the SeqAIJ block `sub`, the index of the same (row, column) in `big`'s
+// value array, appended to map; columns through the garrays if given (global columns).
+void subset_map(Mat sub, const PetscInt* gsub, Mat big, const PetscInt* gbig,
+                std::vector<PetscInt>& map) {
+  const PetscInt *si, *sj, *bi, *bj;
+  PetscInt ns, nb;
+  PetscBool ok1, ok2;
+  GF_PETSC(MatGetRowIJ(sub, 0, PETSC_FALSE, PETSC_FALSE, &ns, &si, &sj, &ok1));
+  GF_PETSC(MatGetRowIJ(big, 0, PETSC_FALSE, PETSC_FALSE, &nb, &bi, &bj, &ok2));
+  if (!ok1 || !ok2 || ns != nb) throw RunError("exact plastic step: J's pattern not readable");
+  for (PetscInt r = 0; r < ns; ++r) {
+    PetscInt k = bi[r];
+    for (PetscInt e = si[r]; e < si[r + 1]; ++e) {
+      const PetscInt col = gsub ? gsub[sj[e]] : sj[e];
+      // Both rows are sorted by local column, and the garrays are increasing, so the global
+      // columns are sorted too.
+      while (k < bi[r + 1] && (gbig ? gbig[bj[k]] : bj[k]) < col) ++k;
+      if (k == bi[r + 1] || (gbig ? gbig[bj[k]] : bj[k]) != col)
+        throw RunError("exact plastic step: C M B has an entry outside J's pattern");
+      map.push_back(k);
+    }
+  }
+  GF_PETSC(MatRestoreRowIJ(sub, 0, PETSC_FALSE, PETSC_FALSE, &ns, &si, &sj, &ok1));
+  GF_PETSC(MatRestoreRowIJ(big, 0, PETSC_FALSE, PETSC_FALSE, &nb, &bi, &bj, &ok2));
+}
+}  // namespace
+
 void ExactPlasticStep::fill_jacobian() {
   GF_PETSC(MatCopy(AJ_, J_, SAME_NONZERO_PATTERN));
-  GF_PETSC(MatAXPY(J_, -1.0, CMB_, SUBSET_NONZERO_PATTERN));
+  // J_ -= CMB_ entry by entry through map_ (MatAXPY with a subset pattern inserts row by row:
+  // 1.9 ms per iteration on case A at n = 64, 9 % of the run). The same arithmetic, so the
+  // same values.
+  Mat jd, jo, cd, co;
+  const PetscInt *gj, *gc;
+  local_blocks(J_, &jd, &jo, &gj);
+  local_blocks(CMB_, &cd, &co, &gc);
+  if (map_.empty() && !map_built_) {
+    map_built_ = true;
+    subset_map(cd, nullptr, jd, nullptr, map_);
+    map_diag_ = map_.size();
+    if (co) subset_map(co, gc, jo, gj, map_);
+  }
+  const auto sub = [](Mat big, Mat small, const PetscInt* m, size_t n) {
+    PetscScalar* bv;
+    const PetscScalar* sv;
+    GF_PETSC(MatSeqAIJGetArray(big, &bv));
+    GF_PETSC(MatSeqAIJGetArrayRead(small, &sv));
+    for (size_t e = 0; e < n; ++e) bv[m[e]] += -1.0 * sv[e];
+    GF_PETSC(MatSeqAIJRestoreArrayRead(small, &sv));
+    GF_PETSC(MatSeqAIJRestoreArray(big, &bv));
+  };
+  sub(jd, cd, map_.data(), map_diag_);
+  if (co) sub(jo, co, map_.data() + map_diag_, map_.size() - map_diag_);
+  if (co) {  // the blocks' states have moved; the parallel matrix's moves with an assembly
+    GF_PETSC(MatAssemblyBegin(J_, MAT_FINAL_ASSEMBLY));
+    GF_PETSC(MatAssemblyEnd(J_, MAT_FINAL_ASSEMBLY));
+  }
 }
 
 ExactStepStats ExactPlasticStep::solve(Mat A, Vec b, const PlasticMatrices& m, Vec kappa, Vec c,

@@ -267,6 +267,11 @@ class ExactPlasticStep {
   // entries elsewhere are then an error). Collective.
   void make_M(bool granular_only);
   void fill_jacobian();  // J_ = AJ_ - CMB_, CMB_ current. Collective.
+  // Per entry of CMB_'s local diagonal block, then of its off-diagonal block, the index of the
+  // same entry in J_'s block's value array (made by the first fill_jacobian of a pattern).
+  std::vector<PetscInt> map_;
+  size_t map_diag_ = 0;
+  bool map_built_ = false;
   const PlasticMatrices* m_ = nullptr;
   Vec b_ = nullptr, kappa_ = nullptr, c_ = nullptr, lambda_ = nullptr, D_ = nullptr,
       T_ = nullptr, CT_ = nullptr;  // CT_: C T of the residual (dm_vel)
