@@ -423,10 +423,7 @@ void ExactPlasticStep::set_factorisation(KSP k) {
   PC pc;
   GF_PETSC(KSPGetPC(k, &pc));
   GF_PETSC(PCSetType(pc, spd_ ? PCCHOLESKY : PCLU));
-  char solver[64] = MATSOLVERMUMPS;
-  GF_PETSC(PetscOptionsGetString(nullptr, "exactpd_", "-pc_factor_mat_solver_type", solver,
-                                 sizeof solver, nullptr));
-  GF_PETSC(PCFactorSetMatSolverType(pc, solver));
+  GF_PETSC(PCFactorSetMatSolverType(pc, solver_.c_str()));
 }
 
 namespace {
@@ -479,7 +476,7 @@ void ExactPlasticStep::fill_jacobian() {
   const PetscInt *gj, *gc;
   local_blocks(J_, &jd, &jo, &gj);
   local_blocks(CMB_, &cd, &co, &gc);
-  if (map_.empty() && !map_built_) {
+  if (!map_built_) {
     map_built_ = true;
     subset_map(cd, nullptr, jd, nullptr, map_);
     map_diag_ = map_.size();
@@ -490,13 +487,14 @@ void ExactPlasticStep::fill_jacobian() {
     const PetscScalar* sv;
     GF_PETSC(MatSeqAIJGetArray(big, &bv));
     GF_PETSC(MatSeqAIJGetArrayRead(small, &sv));
-    for (size_t e = 0; e < n; ++e) bv[m[e]] += -1.0 * sv[e];
+    for (size_t e = 0; e < n; ++e) bv[m[e]] -= sv[e];
     GF_PETSC(MatSeqAIJRestoreArrayRead(small, &sv));
     GF_PETSC(MatSeqAIJRestoreArray(big, &bv));
   };
   sub(jd, cd, map_.data(), map_diag_);
-  if (co) sub(jo, co, map_.data() + map_diag_, map_.size() - map_diag_);
-  if (co) {  // the blocks' states have moved; the parallel matrix's moves with an assembly
+  if (co) {
+    sub(jo, co, map_.data() + map_diag_, map_.size() - map_diag_);
+    // The blocks' states have moved; the parallel matrix's moves with an assembly.
     GF_PETSC(MatAssemblyBegin(J_, MAT_FINAL_ASSEMBLY));
     GF_PETSC(MatAssemblyEnd(J_, MAT_FINAL_ASSEMBLY));
   }
@@ -858,10 +856,11 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     GF_PETSC(PetscOptionsGetString(nullptr, "exactpd_", "-pc_factor_mat_solver_type", solver,
                                    sizeof solver, nullptr));
     const std::string t = type;
+    solver_ = solver;
     pc_auto_ = !set || t == PCCHOLESKY || t == PCLU;
     // Cholesky by MUMPS only (UMFPACK and KLU have no Cholesky in PETSc 3.18).
     spd_ = !pres_ && !cholesky_failed_ && (!set || t == PCCHOLESKY) &&
-           std::string(solver) == MATSOLVERMUMPS;
+           solver_ == MATSOLVERMUMPS;
   }
   if (spd_ && !newton_matrix_symmetric(A)) {
     PetscPrintf(g_.comm(),

@@ -40,6 +40,7 @@
 #include <petscsnes.h>
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "grid/Grid.hpp"
@@ -261,6 +262,7 @@ class ExactPlasticStep {
   // The PC of k (after its KSPSetFromOptions): Cholesky (spd_) or LU, with
   // -exactpd_pc_factor_mat_solver_type or MUMPS; nothing if the user chose another PC.
   bool pc_auto_ = true;
+  std::string solver_ = "mumps";  // -exactpd_pc_factor_mat_solver_type, read each step
   void set_factorisation(KSP k);
   void jacobian_pattern(Mat A);
   // M_ anew, with a zero 3 x 3 block in every cell, or only in those with kappa_ > 0 (new
@@ -268,7 +270,8 @@ class ExactPlasticStep {
   void make_M(bool granular_only);
   void fill_jacobian();  // J_ = AJ_ - CMB_, CMB_ current. Collective.
   // Per entry of CMB_'s local diagonal block, then of its off-diagonal block, the index of the
-  // same entry in J_'s block's value array (made by the first fill_jacobian of a pattern).
+  // same entry in J_'s block's value array (made by the first fill_jacobian of a pattern;
+  // jacobian_pattern clears it).
   std::vector<PetscInt> map_;
   size_t map_diag_ = 0;
   bool map_built_ = false;
