@@ -48,6 +48,22 @@ def interface_section(path):
         "paper at n = 64, beyond its domain's far wall, and 18.7 % at n = 128):")
 
 
+def exact_section(path):
+    """The paper's cases with the exact plastic solver next to the paper's scheme (issue 19), the
+    tables of scripts/validation/exact_compare.py (docs/exact_compare.md) if it exists."""
+    return included_section(
+        path, "The exact plastic solver next to the paper's scheme (issue 19)", EXACT_INTRO)
+
+
+EXACT_INTRO = (
+    "The paper's cases with `rheology.solver = \"newton\"` (the plastic step solved exactly by "
+    "a semismooth Newton method, theta = 0: truly rigid zones, no relaxation, "
+    "`docs/RHEOLOGY.md`) and with the paper's fixed point (the default), both with the default "
+    "CLSVOF interface, made by `scripts/validation/exact_compare.sh` (the tables of "
+    "`docs/exact_compare.md`). Which grids are still missing, and why, is said in "
+    "`docs/STATUS.md` (issue 19).")
+
+
 def channel_section(path):
     """The channel's side walls and the gate (issue 21), the tables of
     scripts/validation/channel.py (docs/channel_compare.md) if it exists."""
@@ -111,6 +127,7 @@ def main():
         os.makedirs(figs_dir, exist_ok=True)
     L = document.build(document.Report(R, figs_dir, a.no_figures))
     L += interface_section(os.path.join(os.path.dirname(a.out), "interface_compare.md"))
+    L += exact_section(os.path.join(os.path.dirname(a.out), "exact_compare.md"))
     L += channel_section(os.path.join(os.path.dirname(a.out), "channel_compare.md"))
     L += channel_fine_section(os.path.join(os.path.dirname(a.out), "channel_compare_fine.md"))
     L += channel_lid_section(os.path.join(os.path.dirname(a.out), "channel_compare_lid.md"))
