@@ -72,7 +72,9 @@ def main(argv):
          "any diagnostics row; iterations: Newton or fixed-point iterations over the run; "
          "capped: steps ended at the iteration cap, with the largest residual such a step left "
          "(the Newton step's max |S - P(S + c D)|, the fixed point's last change); wall: the "
-         "whole run (s). The `paper` rows are the paper's own figures.\n",
+         "whole run (s; the script runs one at a time, but runs made two at a time on a 2-core "
+         "machine show it too: indicative only, the speed measure is `bench/newton_speed.py`). "
+         "The `paper` rows are the paper's own figures.\n",
          "| run | solver | status | " + " | ".join(h for _, h, _ in FIGURES) +
          " | max abs dV/V | steps | iterations | capped (largest left) | wall (s) |",
          "|---|---|---|" + "---|" * len(FIGURES) + "---|---|---|---|---|"]

@@ -14,10 +14,11 @@
 #
 # A run whose summary.json says "completed" is skipped unless FORCE=1. GRANFLOW=path chooses
 # the binary (default build/granflow), OUT_ROOT the output root (default runs/exact). The
-# exact solver's one-core wall times on this 2-core machine (two runs at a time), from the runs
-# of 2026-12-07: a_n64 7 min, b_n64 6 min, a_n128 about an hour; the fixed point's are about a
-# tenth. The HP files take dt = 1e-4 s: 10,600 steps (a_hp_n32 about 15 min with the exact
-# solver).
+# exact solver's one-core wall times on this 2-core machine, two runs at a time, from the runs
+# of 2026-12-07 (docs/exact_compare.md): a_n64 7-16 min, b_n64 5 min, a_mui_n64 6 min, a_n128
+# 40 min, b_n128 44 min; the HP files take dt = 1e-4 s (10,600 steps): a_hp_n32 9 min, a_hp_n64
+# 40 min. The fixed point's are 5 to 15 times shorter. Not made yet: a_mui_n128, a_hp_n128,
+# a_n256, b_n256 (hours each with the exact solver).
 set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
