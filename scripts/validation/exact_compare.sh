@@ -16,8 +16,8 @@
 # the binary (default build/granflow), OUT_ROOT the output root (default runs/exact). The
 # exact solver's one-core wall times on this 2-core machine, two runs at a time, from the runs
 # of 2026-12-07 (docs/exact_compare.md): a_n64 7-16 min, b_n64 5 min, a_mui_n64 6 min, a_n128
-# 40 min, b_n128 44 min; the HP files take dt = 1e-4 s (10,600 steps): a_hp_n32 9 min, a_hp_n64
-# 40 min. The fixed point's are 5 to 15 times shorter. Not made yet: a_mui_n128, a_hp_n128,
+# 40 min, a_mui_n128 43 min, b_n128 44 min; the HP files take dt = 1e-4 s (10,600 steps): a_hp_n32 9 min, a_hp_n64
+# 40 min. The fixed point's are 5 to 15 times shorter. Not made yet: a_hp_n128,
 # a_n256, b_n256 (hours each with the exact solver).
 set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
