@@ -18,7 +18,6 @@ share A_d/A at t = 0.3 s, in the constant-speed phase, 20-25 % in the paper). Wi
 all variants: channel_front_<name>.png, or channel_front_<tag>_<name>.png when OUT_MD is
 channel_compare_<tag>.md (SET=fine of channel.sh: docs/channel_compare_fine.md).
 """
-import json
 import os
 import re
 import sys
@@ -27,7 +26,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import granflow_run as gr  # noqa: E402
 import records  # noqa: E402
-from interface_compare import f, start  # noqa: E402
+from interface_compare import f, start, variant_runs  # noqa: E402
 
 VARIANTS = ("none", "side", "gate", "both")
 # figures compared as relative changes (the others as differences)
@@ -70,14 +69,7 @@ EXPERIMENT = {"a": {"runout_m": 0.475, "front_speed_mps": 0.775, "backwall_heigh
 
 def load(root):
     runs = {}
-    for name in sorted(os.listdir(root)):
-        m = re.fullmatch(r"(.+)_(" + "|".join(VARIANTS) + ")", name)
-        path = os.path.join(root, name)
-        if not m or not os.path.isfile(os.path.join(path, "summary.json")):
-            continue
-        with open(os.path.join(path, "summary.json")) as fh:
-            s = json.load(fh)
-        d = gr.read_csv(os.path.join(path, "diagnostics.csv"))
+    for name, variant, path, s, d in variant_runs(root, VARIANTS):
         s["dv_max"] = abs(d["volume_change_pct"]).max() / 100
         s["front"] = (d["t"], d["front_x"])
         # the largest speed on the grid, air or grains (the CFL condition's)
@@ -93,7 +85,7 @@ def load(root):
             # the output nearest to 0.3 s (a gate's or a wall's steps move them by < dt)
             k = c & (abs(q["t"] - 0.3) < 0.006)
             s["Ad_A_03"] = q["Ad_over_A"][k][0] if k.any() else None
-        runs[(m.group(1), m.group(2))] = s
+        runs[(name, variant)] = s
     return runs
 
 

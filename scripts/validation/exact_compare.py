@@ -13,15 +13,13 @@ per run the newton figure's relative difference to the fixed point's; the paper'
 (../shared/reference/paper_targets.md, as scripts/validation/report/runs.py holds them) head
 each case.
 """
-import json
 import os
 import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import granflow_run as gr  # noqa: E402
-from interface_compare import f, start  # noqa: E402
+from interface_compare import f, start, variant_runs  # noqa: E402
 from report import runs as paper  # noqa: E402
 
 SOLVERS = ("newton", "fixed_point")
@@ -38,18 +36,8 @@ PAPER = {"a": {"runout_m": paper.A_RUNOUT_PAPER, "backwall_height_m": paper.A_BA
 
 
 def load(root):
-    runs = {}
-    for name in sorted(os.listdir(root)):
-        m = re.fullmatch(r"(.+)_(newton|fixed_point)", name)
-        path = os.path.join(root, name)
-        if not m or not os.path.isfile(os.path.join(path, "summary.json")):
-            continue
-        with open(os.path.join(path, "summary.json")) as fh:
-            s = json.load(fh)
-        d = gr.read_csv(os.path.join(path, "diagnostics.csv"))
-        runs[(m.group(1), m.group(2))] = {"s": s,
-                                          "dv_max": abs(d["volume_change_pct"]).max() / 100}
-    return runs
+    return {(name, sv): {"s": s, "dv_max": abs(d["volume_change_pct"]).max() / 100}
+            for name, sv, _, s, d in variant_runs(root, SOLVERS)}
 
 
 def order(name):

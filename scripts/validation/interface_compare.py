@@ -28,16 +28,22 @@ METHODS = ("clsvof", "level_set")
 toes = gr.bottom_toes
 
 
-def load(root):
-    runs = {}
+def variant_runs(root, variants):
+    """The runs RUN_ROOT/<name>_<variant>/ with a summary.json, variant one of variants, in name
+    order: (name, variant, path, summary.json as a dict, diagnostics.csv's columns)."""
     for name in sorted(os.listdir(root)):
-        m = re.fullmatch(r"(.+)_(clsvof|level_set)", name)
+        m = re.fullmatch(r"(.+)_(" + "|".join(variants) + ")", name)
         path = os.path.join(root, name)
         if not m or not os.path.isfile(os.path.join(path, "summary.json")):
             continue
-        with open(os.path.join(path, "summary.json")) as f:
-            s = json.load(f)
-        d = gr.read_csv(os.path.join(path, "diagnostics.csv"))
+        with open(os.path.join(path, "summary.json")) as fh:
+            s = json.load(fh)
+        yield m.group(1), m.group(2), path, s, gr.read_csv(os.path.join(path, "diagnostics.csv"))
+
+
+def load(root):
+    runs = {}
+    for name, method, path, s, d in variant_runs(root, METHODS):
         with open(os.path.join(path, "case.toml")) as f:
             case = gr.tomllib.loads(f.read())
         h = case["domain"]["Lx"] / s["nx"]
@@ -51,13 +57,13 @@ def load(root):
             q["recede_cells"] = (front[k] - np.nanmin(front[k:])) / h
             q["front_end"] = front[-1]
         vtr = sorted(glob.glob(os.path.join(path, "fields_*.vtr")))
-        if m.group(1).startswith("pile") and len(vtr) >= 2:
+        if name.startswith("pile") and len(vtr) >= 2:
             (t0, l0, r0, hh), (t1, l1, r1, _) = toes(vtr[0]), toes(vtr[-1])
             q["toes"] = (t0, t1, (l1 - l0) / hh, (r1 - r0) / hh)
             q["vg_late"] = d["max_speed_granular"][d["t"] > 0.1].max()
             q["vg_all"] = d["max_speed_granular"].max()
             q["vg_end"] = d["max_speed_granular"][-1]
-        runs[(m.group(1), m.group(2))] = q
+        runs[(name, method)] = q
     return runs
 
 
