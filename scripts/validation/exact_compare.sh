@@ -44,14 +44,6 @@ RUNS=(
 mkdir -p "$out_root"
 # shellcheck source=run_lib.sh
 source "$root/scripts/validation/run_lib.sh"
-for r in "${RUNS[@]}"; do
-  IFS='|' read -r name case opts ranks <<<"$r"
-  ranks="${ranks:-1}"
-  if [[ -n "${ONLY:-}" && " $ONLY " != *" $name "* ]]; then continue; fi
-  for s in $solvers; do
-    # shellcheck disable=SC2086
-    run_case "$out_root/${name}_$s" "$case" "$ranks" $opts --set "rheology.solver=$s"
-  done
-done
+run_variants rheology.solver "$solvers"
 [[ -n "${LIST:-}" ]] || /usr/bin/python3 "$root/scripts/validation/exact_compare.py" \
   "$out_root" "$root/docs/exact_compare.md"

@@ -41,14 +41,6 @@ RUNS=(
 mkdir -p "$out_root"
 # shellcheck source=run_lib.sh
 source "$root/scripts/validation/run_lib.sh"
-for r in "${RUNS[@]}"; do
-  IFS='|' read -r name case opts ranks <<<"$r"
-  ranks="${ranks:-1}"
-  if [[ -n "${ONLY:-}" && " $ONLY " != *" $name "* ]]; then continue; fi
-  for m in $methods; do
-    # shellcheck disable=SC2086
-    run_case "$out_root/${name}_$m" "$case" "$ranks" $opts --set "interface.method=$m"
-  done
-done
+run_variants interface.method "$methods"
 [[ -n "${LIST:-}" ]] || /usr/bin/python3 "$root/scripts/validation/interface_compare.py" \
   "$out_root" "$root/docs/interface_compare.md"

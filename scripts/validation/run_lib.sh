@@ -25,3 +25,20 @@ run_case() {
     --set output.progress_interval=60 > "$out.log" 2>&1 || rc=$?
   echo "     exit $rc, $((SECONDS - start)) s"
 }
+
+# Every run of the caller's RUNS array ("name|case|options[|ranks]", ranks 1 if empty), those
+# named in ONLY if it is set, once per value of KEY, into $out_root/<name>_<value>:
+#
+#   run_variants KEY "VALUE..."
+run_variants() {
+  local key="$1" values="$2" r name case opts ranks v
+  for r in "${RUNS[@]}"; do
+    IFS='|' read -r name case opts ranks <<<"$r"
+    ranks="${ranks:-1}"
+    if [[ -n "${ONLY:-}" && " $ONLY " != *" $name "* ]]; then continue; fi
+    for v in $values; do
+      # shellcheck disable=SC2086
+      run_case "$out_root/${name}_$v" "$case" "$ranks" $opts --set "$key=$v"
+    done
+  done
+}
