@@ -18,6 +18,13 @@ NewtonPlastic::NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Par
   // change (ExactPlasticStep::solve_newton), 9. Not with the pressure: there the unit test's
   // channel (test_exact_plastic_step_mpi.cpp) took 200 iterations at 1e-9 instead of 21.
   if (!coupled) opt_.gap_floor = 1e-9;
+  {
+    // -exactpd_retract false: the linearisation at S_k itself (ExactStepOptions::retract), to
+    // compare iteration counts; the converged step is the same.
+    PetscBool flag = PETSC_TRUE, set = PETSC_FALSE;
+    GF_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-exactpd_retract", &flag, &set));
+    if (set) opt_.retract = flag == PETSC_TRUE;
+  }
   if (coupled) {
     saddle_blocks(g, pres_);
     GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &p_step_));
