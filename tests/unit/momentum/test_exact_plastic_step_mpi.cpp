@@ -258,7 +258,21 @@ TEST(ExactPlasticStepNewton, BinghamPoiseuilleProfileInAFewIterations) {
               r2, r3);
   EXPECT_LT(r2, 1e-7);
   EXPECT_LT(r3, 1e-7);
-  for (Vec* v : {&u1, &u2, &u3}) VecDestroy(v);
+  // Nor on the linearisation point (ExactStepOptions::retract): the retraction of S onto the
+  // unit ball changes the iterates, not the fixed point.
+  Vec u4;
+  DMCreateGlobalVector(g.dm_vel(), &u4);
+  gf::momentum::ExactStepOptions o4;
+  o4.retract = false;
+  const Result r4 = steady(g, kappa, 3.0, u4, true, o4);
+  const double d4 = relative_difference(u1, u4);
+  PetscPrintf(PETSC_COMM_WORLD,
+              "Newton: linearised at S against at P(S): max |du| / max |u| = %.1e (%d "
+              "iterations)\n",
+              d4, r4.st.newton);
+  EXPECT_TRUE(r4.st.converged);
+  EXPECT_LT(d4, 1e-7);
+  for (Vec* v : {&u1, &u2, &u3, &u4}) VecDestroy(v);
 }
 
 // The Newton matrix J = A - C M B is symmetric positive definite where the plastic stress's
