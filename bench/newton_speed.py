@@ -59,7 +59,9 @@ def main():
                 ("metis", "newton, MUMPS's METIS ordering (-exactpd_mat_mumps_icntl_7 7; the "
                  "default QAMD since 2026-12-06)", newton, ["-exactpd_mat_mumps_icntl_7", "7"]),
                 ("lu", "newton, LU instead of Cholesky (-exactpd_pc_type lu; the default LU "
-                 "until 2026-12-07)", newton, ["-exactpd_pc_type", "lu"])]
+                 "until 2026-12-07)", newton, ["-exactpd_pc_type", "lu"]),
+                ("noretract", "newton, linearised at S_k instead of P(S_k) (-exactpd_retract "
+                 "false; the default until 2026-12-07)", newton, ["-exactpd_retract", "false"])]
     keep = {"fp", *a.variants.split(",")} if a.variants != "all" else {v[0] for v in variants}
     variants = [(name, extra, petsc) for key, name, extra, petsc in variants if key in keep]
     load0 = os.getloadavg()[0]
