@@ -641,7 +641,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
         // The linearisation at S retracted onto the unit ball, P(S) (ExactStepOptions::
         // retract): after a yielded cell's Newton step S sits on the tangent line, outside the
         // ball by about half its rotation squared, and |q| - 1 measured from there, not from
-        // c n.E u, made gamma too small by up to 40 times in the cells at their yield limit.
+        // c n.E u, made gamma 4 to 100 times too small in the cells at their yield limit.
         const double ns = std::hypot(s[0], s[1]);
         // Not with the pressure: in the unit test's channel with gravity it took 74 iterations
         // instead of 21 (51 with the yielded cells alone retracted).

@@ -206,9 +206,10 @@ class ExactPlasticStep {
   // where q_k = P(S_k) + c E u_k: the linearisation point is S_k retracted onto the unit ball
   // (ExactStepOptions::retract; without it S_k and q_k = S_k + c E u_k). After a yielded cell's
   // step S lies on the tangent line at n_k, outside the ball; from there |q_k| - 1 is that
-  // overshoot rather than c n.E u, and in a cell at its yield limit (c |E u| of 1e-6) gamma_k came
-  // out up to 40 times too small, the cell's stress turning by about 1e-2 rad per iteration for
-  // 30 iterations (case A at n = 32, a bottom-row cell, -exactpd_monitor). The retraction leaves
+  // overshoot rather than c n.E u, and in a cell at its yield limit (c |E u| of 2e-6 to 7e-6)
+  // gamma_k came out 4 to 100 times too small, the cell's stress turning by 1e-3 to 4e-2 rad per
+  // iteration for 30 iterations (case A at n = 32, a bottom-row cell, -exactpd_monitor). The
+  // retraction leaves
   // the fixed points alone: at one, S = n + t tau with t = gamma tau.E u (tau a unit tangent)
   // and tau.q_k = 0 give (gamma / |S| + c) tau.E u = 0, so t = 0, |S| = 1 and S = n parallel to
   // E u; a rigid one, S = P(S) + c_R E u with |P(S) + c E u| <= 1, has E u = 0 (else |S| > 1,
