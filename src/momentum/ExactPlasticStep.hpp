@@ -194,8 +194,9 @@ class ExactPlasticStep {
                        const ExactStepOptions& opt = {});
 
   // The same problem by a primal-dual semismooth Newton method: u and S are updated together,
-  // one linear solve per iteration (stats: outer = newton = the iterations). With q_k = S_k +
-  // c E u_k in a cell, the linearisation of S = P(S + c E u) at (u_k, S_k) gives
+  // one linear solve per iteration (stats: outer = newton = the iterations). With q_k =
+  // P(S_k) + c E u_k in a cell (below), the linearisation of S = P(S + c E u) at (u_k, P(S_k))
+  // gives
   //   yielded (|q_k| > 1):  S_{k+1} = n_k + gamma_k (I - n_k n_k^T) E u_{k+1},
   //                         n_k = q_k / |q_k|, gamma_k = c / (|q_k| - 1)  (Newton at P(S_k)),
   //   rigid   (|q_k| <= 1): E u_{k+1} = 0, taken as S_{k+1} = P(S_k) + c_R E u_{k+1} with
@@ -209,11 +210,10 @@ class ExactPlasticStep {
   // overshoot rather than c n.E u, and in a cell at its yield limit (c |E u| of 2e-6 to 7e-6)
   // gamma_k came out 4 to 100 times too small, the cell's stress turning by 1e-3 to 4e-2 rad per
   // iteration for 30 iterations (case A at n = 32, a bottom-row cell, -exactpd_monitor). The
-  // retraction leaves
-  // the fixed points alone: at one, S = n + t tau with t = gamma tau.E u (tau a unit tangent)
-  // and tau.q_k = 0 give (gamma / |S| + c) tau.E u = 0, so t = 0, |S| = 1 and S = n parallel to
-  // E u; a rigid one, S = P(S) + c_R E u with |P(S) + c E u| <= 1, has E u = 0 (else |S| > 1,
-  // E u parallel to S and |q| > 1).
+  // retraction leaves the fixed points alone: at one, S = n + t tau with t = gamma tau.E u (tau
+  // a unit tangent) and tau.q_k = 0 give (gamma / |S| + c) tau.E u = 0, so t = 0, |S| = 1 and
+  // S = n parallel to E u; a rigid one, S = P(S) + c_R E u with |P(S) + c E u| <= 1, has E u = 0
+  // (else |S| > 1, E u parallel to S and |q| > 1).
   // So u_{k+1} solves (A - C Pi kappa G_k L B) u = b + C Pi kappa (S0_k + G_k L d0) with
   // G_k, S0_k the cell's (gamma_k (I - n n^T), n_k) or (c_R I, P(S_k)). Every fixed point of this
   // iteration is the exact solution, whatever gamma >= 0 and c_R > 0: E u = 0 in the rigid
