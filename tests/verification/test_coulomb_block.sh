@@ -13,6 +13,11 @@
 #     1.8102 m/s^2), friction force -0.13 %, -0.10 %.
 #     Required: the error falls with h and is below 2 % at n = 60 (the target), 4 % at
 #     n = 30; the mean friction force is within 2 % of tan(alpha_b) m g cos(theta).
+#     The runs allow rheology.fp_max_iter = 300 and require that no step reaches it: with the
+#     default 50, n = 60 capped 39 of 261 steps (last changes up to 8.4e-3), and what the
+#     unconverged steps left depended on the processor: -0.14 % on an AMD EPYC, -1.11 % on an
+#     Intel Xeon (2026-12-07; n = 30 -0.18 % there), where the error then rose with h. With 300,
+#     no step capped on the Xeon: n = 30 -0.25 %, n = 60 -0.17 %.
 #  2. theta = 15 deg < alpha_b: the block holds (sliding without friction would reach
 #     g sin(theta) t = 0.25 m/s at 0.1 s). With the case file as it is, it creeps at up to 7e-4
 #     m/s (mean granular speed). Four settings, each needed (docs/RHEOLOGY.md, "Holding block"),
@@ -35,7 +40,8 @@ trap 'rm -rf "$tmp"' EXIT
 case_file="$src/cases/verify/coulomb_block.toml"
 
 for n in 30 60; do
-  "$bin" run "$case_file" --set grid.n=$n --out "$tmp/slide$n" > "$tmp/log$n" 2>&1 &
+  "$bin" run "$case_file" --set grid.n=$n --set rheology.fp_max_iter=300 --out "$tmp/slide$n" \
+    > "$tmp/log$n" 2>&1 &
 done
 wait || true
 for n in 30 60; do
@@ -49,8 +55,9 @@ g, th, ab = 9.81, math.radians(30), math.radians(20)
 exact = g * (math.sin(th) - math.tan(ab) * math.cos(th))
 # block 0.1 m x 0.05 m of rho 1550: the friction force at the Coulomb limit, N/m
 f_exact = math.tan(ab) * 1550 * 0.1 * 0.05 * g * math.cos(th)
-err, ferr = {}, {}
+err, ferr, capped = {}, {}, {}
 for n in (30, 60):
+    capped[n] = gr.Run(f"{sys.argv[1]}/slide{n}").summary["warnings_fp_capped_steps"]
     d = gr.read_csv(f"{sys.argv[1]}/slide{n}/diagnostics.csv")
     t, u, f = d["t"], d["granular_u"], d["bottom_friction_N"]
     m = t >= 0.02 - 1e-12
@@ -59,10 +66,10 @@ for n in (30, 60):
     ferr[n] = abs(f[m].mean()) / f_exact - 1
     print(f"n={n}: a = {a:.4f} m/s^2 (exact {exact:.4f}, {100*err[n]:+.2f} %), offset u(t) - exact t at "
           f"t = 0.2 s: {u[-1] - exact * t[-1]:.2e} m/s, mean friction {abs(f[m].mean()):.3f} N/m "
-          f"(exact {f_exact:.3f}, {100*ferr[n]:+.2f} %)")
+          f"(exact {f_exact:.3f}, {100*ferr[n]:+.2f} %), capped steps {capped[n]}")
 ok = abs(err[60]) < abs(err[30]) and abs(err[30]) < 0.04 and abs(err[60]) < 0.02 \
-     and all(abs(e) < 0.02 for e in ferr.values())
-print("PASS" if ok else "FAIL: acceleration error does not fall with h, or is above 4 % (n=30) / 2 % (n=60), or the friction force is off by more than 2 %")
+     and all(abs(e) < 0.02 for e in ferr.values()) and not any(capped.values())
+print("PASS" if ok else "FAIL: acceleration error does not fall with h, or is above 4 % (n=30) / 2 % (n=60), or the friction force is off by more than 2 %, or a step reached fp_max_iter")
 sys.exit(0 if ok else 1)
 PY
 "$bin" run "$case_file" --set "physics.gravity=[2.539024, -9.475746]" --set time.t_end=0.1 \
