@@ -71,8 +71,8 @@ struct ExactStepOptions {
   // at S_k (see solve_newton; false: the linearisation of before 2026-12-07). The fixed points
   // are the same (the exact solution); the iteration counts are not. Measured (eleventh session,
   // docs/RHEOLOGY.md): case A at n = 32 to 0.1 s 2,904 iterations against 4,003, case B at
-  // n = 32 to 0.5 s 3,808 against 4,868, case A at n = 64 to 0.1 s 3,510 against 4,587 (the
-  // last with the yielded cells retracted only). PETSc option -exactpd_retract false: off.
+  // n = 32 to 0.5 s 3,808 against 4,868, case A at n = 64 to 0.1 s 3,347 against 4,587.
+  // PETSc option -exactpd_retract false: off.
   // Not with NewtonPressure, where it took more iterations (the unit test's channel with
   // gravity: 74 instead of 21).
   bool retract = true;
