@@ -603,12 +603,12 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   worst_ = {};
   const Box& b = g_.box();
   GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
-  double wl2 = 0, wmax = 0;
+  double wl2 = 0, wmax = 0, wrig = 0;
   const size_t ncell = static_cast<size_t>(b.xm) * b.ym;
   if (active_.size() != 3 * ncell) active_.assign(3 * ncell, 0);  // the cells, then their faces
   double wchanges = 0;
   if (walls_) {
-    wmax = linearise_walls(u, opt, wl2, wchanges);
+    wmax = linearise_walls(u, opt, wl2, wchanges, wrig);
   }
   const PetscScalar ***d, ***d0, ***lam, **k, **c, **cr = nullptr;
   PetscScalar*** t;
@@ -624,7 +624,9 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   lin_.assign(static_cast<size_t>(b.xm) * b.ym * 5, 0.0);
   double changes = 0;
   if (pres_) prox_.assign(static_cast<size_t>(b.xm) * b.ym, 0.0);
-  double loc[2] = {wmax, wl2};  // max and sum of squares of |S - P(S + c E u)| (and walls')
+  // max and sum of squares of |S - P(S + c E u)| (and walls'), and the max over the rigid
+  // cells and sticking faces
+  double loc[3] = {wmax, wl2, wrig};
   for (PetscInt j = b.ys; j < b.ye(); ++j)
     for (PetscInt i = b.xs; i < b.xe(); ++i) {
       const size_t cell = static_cast<size_t>((j - b.ys) * b.xm + (i - b.xs));
@@ -657,6 +659,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
         loc[0] = std::max(loc[0], r);
         loc[1] += r * r;
         const signed char cls = nq <= 1 ? 1 : 2;
+        if (cls == 1) loc[2] = std::max(loc[2], r);
         if (active_[cell] != 0 && active_[cell] != cls) ++changes;
         active_[cell] = cls;
         if (nq <= 1) {  // rigid: E u = 0 in its augmented form, step rigid_factor c
@@ -699,7 +702,7 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   GF_PETSC(MatAssemblyBegin(M_, MAT_FINAL_ASSEMBLY));
   GF_PETSC(MatAssemblyEnd(M_, MAT_FINAL_ASSEMBLY));
   active_changes_ = g_.sum(changes + wchanges);
-  return {g_.max(loc[0]), std::sqrt(g_.sum(loc[1]))};
+  return {g_.max(loc[0]), std::sqrt(g_.sum(loc[1])), g_.max(loc[2])};
 }
 
 double ExactPlasticStep::refresh_kappa_b(Vec u) {
@@ -726,7 +729,7 @@ void ExactPlasticStep::for_wall_faces(F&& f) const {
 // The walls' part of linearise: linw_, wdiag_, wrhs_; returns the local max of |s_t -
 // P_b(s_t + c_b u_t)| and adds its squares to l2.
 double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, double& l2,
-                                         double& changes) {
+                                         double& changes, double& rigid) {
   const Box& b = g_.box();
   GF_PETSC(VecSet(wdiag_, 0.0));
   GF_PETSC(VecSet(wrhs_, 0.0));
@@ -750,6 +753,7 @@ double ExactPlasticStep::linearise_walls(Vec u, const ExactStepOptions& opt, dou
     mx = std::max(mx, r);
     l2 += r * r;
     const bool stick = std::abs(qq) <= 1;
+    if (stick) rigid = std::max(rigid, r);
     signed char& cls = active_[static_cast<size_t>(b.xm) * b.ym + f];
     if (cls != 0 && cls != (stick ? 1 : 2)) ++changes;
     cls = stick ? 1 : 2;
@@ -920,18 +924,25 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   bool tail = false;  // kappa_b refreshed after every solve
   PetscBool monitor = PETSC_FALSE;
   GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_monitor", &monitor));
+  // The rigid cells and sticking wall faces to a tighter bound (ExactStepOptions::
+  // rigid_tol_factor; -exactpd_rigid_tol_factor f).
+  PetscReal rigid_factor = opt.rigid_tol_factor;
+  GF_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-exactpd_rigid_tol_factor", &rigid_factor,
+                               nullptr));
+  const double rigid_tol = rigid_factor * opt.tol;
+  const auto within = [&](const Residual& r) { return r.max <= opt.tol && r.rigid <= rigid_tol; };
   for (int it = 0;; ++it) {
     st.change = res.max;
     if (monitor)
       GF_PETSC(PetscPrintf(g_.comm(),
-                           "  exact plastic step: iteration %d, residual max %.3e, 2-norm %.3e, "
-                           "%d halvings, %.0f active-set changes\n",
-                           it, res.max, res.l2, st.backtracks, active_changes_));
+                           "  exact plastic step: iteration %d, residual max %.3e (rigid %.3e), "
+                           "2-norm %.3e, %d halvings, %.0f active-set changes\n",
+                           it, res.max, res.rigid, res.l2, st.backtracks, active_changes_));
     if (monitor) print_worst();
     // After a solve the momentum equation holds with the updated S (the linear system is that
     // equation), so what is left is the projection's residual; before the first solve the
     // momentum equation is not known to hold.
-    if (it > 0 && res.max <= opt.tol && !full_next && is_loc_ && local_since_full > 0) {
+    if (it > 0 && within(res) && !full_next && is_loc_ && local_since_full > 0) {
       // Converged on the local rows: the rows outside them are frozen at the last full solve,
       // and must still satisfy the momentum equation with the final S.
       const double mr = momentum_residual(u);
@@ -940,7 +951,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
                              mr));
       if (mr > opt.momentum_rtol) full_next = true;
     }
-    if (it > 0 && (res.max <= opt.tol || tail) && !(full_next && is_loc_)) {
+    if (it > 0 && (within(res) || tail) && !(full_next && is_loc_)) {
       // Converged with kappa_b fixed: refresh kappa_b (a fixed point on kappa_b, whose
       // derivative is not in the Jacobian). While it changes by more than 1 %, the next
       // problem is solved to tol with kappa_b fixed again; below, kappa_b is refreshed from
@@ -958,7 +969,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
                              "  exact plastic step: kappa_b refreshed, max change %.3e of its "
                              "max\n",
                              dk));
-      if (dk <= opt.kappa_b_tol && res.max <= opt.tol) {
+      if (dk <= opt.kappa_b_tol && within(res)) {
         st.converged = true;
         break;
       }

@@ -51,6 +51,9 @@ namespace gf::momentum {
 struct ExactStepOptions {
   double tol = 1e-10;   // largest change of the multiplier in a cell, dimensionless
   int max_outer = 200;  // multiplier updates (solve) or Newton iterations (solve_newton)
+  // solve_newton: the rigid cells and the sticking wall faces stop at rigid_tol_factor * tol
+  // (see docs/RHEOLOGY.md, twelfth session).
+  double rigid_tol_factor = 0.1;
   double inner_rtol = 1e-12;  // Newton: relative reduction of |F|
   // solve_newton: the floor of |q| - 1 in a yielded cell's tangential stiffness
   // gamma = c / max(|q| - 1, gap_floor) (dimensionless; any gamma >= 0 has the exact fixed
@@ -351,10 +354,12 @@ class ExactPlasticStep {
   // Calls f(i, j, q, h) for the local wall faces of the Coulomb storage: q = 0 (u, bottom and
   // top rows) or 1 (v, left and right columns), h the spacing normal to the wall.
   template <class F> void for_wall_faces(F&& f) const;
-  double linearise_walls(Vec u, const ExactStepOptions& opt, double& l2, double& changes);
+  double linearise_walls(Vec u, const ExactStepOptions& opt, double& l2, double& changes,
+                         double& rigid);
   void newton_update_walls(Vec u);
   struct Residual {
     double max, l2;  // of |lambda - P(lambda + c E u)| over the cells
+    double rigid;    // max over the rigid cells and sticking wall faces
   };
   // Linearises at (u, lambda_): M_ = Pi kappa G L, T_ = Pi kappa (S0 + G L d0), lin_; returns
   // the residual there. Collective.
