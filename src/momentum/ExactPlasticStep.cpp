@@ -924,15 +924,18 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   bool tail = false;  // kappa_b refreshed after every solve
   PetscBool monitor = PETSC_FALSE;
   GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_monitor", &monitor));
-  // The rigid cells and sticking wall faces to a tighter bound (ExactStepOptions::
+  // The rigid cells and sticking wall faces, optionally to a tighter bound (ExactStepOptions::
   // rigid_tol_factor; -exactpd_rigid_tol_factor f).
   PetscReal rigid_factor = opt.rigid_tol_factor;
   GF_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-exactpd_rigid_tol_factor", &rigid_factor,
                                nullptr));
   const double rigid_tol = rigid_factor * opt.tol;
-  const auto within = [&](const Residual& r) { return r.max <= opt.tol && r.rigid <= rigid_tol; };
+  const auto within = [&](const Residual& r) {
+    return r.max <= opt.tol && r.rigid <= rigid_tol;
+  };
   for (int it = 0;; ++it) {
     st.change = res.max;
+    st.rigid = res.rigid;
     if (monitor)
       GF_PETSC(PetscPrintf(g_.comm(),
                            "  exact plastic step: iteration %d, residual max %.3e (rigid %.3e), "
@@ -999,6 +1002,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
         if (walls_) GF_PETSC(VecCopy(sw_best_, walls_->s_wall));
         res = linearise(u, opt);
         st.change = res.max;
+        st.rigid = res.rigid;
       }
       break;
     }

@@ -160,7 +160,10 @@ void declare_physics(Params& p) {
              "steps reach newton_max_iter; docs/newton_knobs.md).");
   p.add_real("rheology.newton_tol", "", 1e-6, Range::gt(0),
              "rheology.solver = newton: stop when max |S - P(S + r kappa D)| over the cells and "
-             "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this.");
+             "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this "
+             "(-exactpd_rigid_tol_factor f: the rigid cells and sticking faces to f times it; "
+             "a dead zone's pressure keeps their residual from step to step; "
+             "docs/RHEOLOGY.md).");
   // 160, not 100: case A at n = 128 capped 2 of its first 13 steps at 100 (the first steps from
   // rest, 3.7e-6 left) and none at 160 (101 iterations at most), measured with the restarts
   // removed on 2026-12-06, whose stopping test was looser (docs/RHEOLOGY.md). A step that

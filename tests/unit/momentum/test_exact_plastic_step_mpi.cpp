@@ -231,6 +231,7 @@ TEST(ExactPlasticStepNewton, BinghamPoiseuilleProfileInAFewIterations) {
                   static_cast<int>(grids[k]), cf, r.err, r.vmax, r.st.newton, r.st.backtracks);
       EXPECT_TRUE(r.st.converged);
       EXPECT_LE(r.st.newton, 6);
+      EXPECT_LE(r.st.rigid, r.st.change);  // the rigid cells' residual is part of the largest
       if (cf == 10.0) err[k] = r.err;
     }
   }
@@ -272,7 +273,27 @@ TEST(ExactPlasticStepNewton, BinghamPoiseuilleProfileInAFewIterations) {
               d4, r4.st.newton);
   EXPECT_TRUE(r4.st.converged);
   EXPECT_LT(d4, 1e-7);
-  for (Vec* v : {&u1, &u2, &u3, &u4}) VecDestroy(v);
+  // The rigid cells held to a tighter bound than the rest (ExactStepOptions::rigid_tol_factor):
+  // with a loose tolerance (1e-4) the plug's cells stop above 1e-4 of it, and with the factor
+  // 1e-4 below it; the answer is the exact one either way.
+  Vec u5;
+  DMCreateGlobalVector(g.dm_vel(), &u5);
+  gf::momentum::ExactStepOptions o5;
+  o5.tol = 1e-4;
+  const Result r5 = steady(g, kappa, 3.0, nullptr, true, o5);
+  o5.rigid_tol_factor = 1e-4;
+  const Result r6 = steady(g, kappa, 3.0, u5, true, o5);
+  const double d6 = relative_difference(u1, u5);
+  PetscPrintf(PETSC_COMM_WORLD,
+              "Newton, tol 1e-4: the rigid cells' residual %.1e (%d iterations); with them to "
+              "1e-8, %.1e (%d iterations), max |du| / max |u| = %.1e\n",
+              r5.st.rigid, r5.st.newton, r6.st.rigid, r6.st.newton, d6);
+  EXPECT_TRUE(r5.st.converged);
+  EXPECT_TRUE(r6.st.converged);
+  EXPECT_GT(r5.st.rigid, 1e-8);  // so that the bound below is the option's doing
+  EXPECT_LE(r6.st.rigid, 1e-8);
+  EXPECT_LT(d6, 1e-7);
+  for (Vec* v : {&u1, &u2, &u3, &u4, &u5}) VecDestroy(v);
 }
 
 // The Newton matrix J = A - C M B is symmetric positive definite where the plastic stress's
