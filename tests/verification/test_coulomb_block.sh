@@ -11,8 +11,15 @@
 #     accelerates at the Coulomb rate. Measured with the paper's level set: n = 30 +2.3 %,
 #     n = 60 +0.5 % (docs/RHEOLOGY.md); with the default clsvof: -0.15 %, -0.14 % (a = 1.8100,
 #     1.8102 m/s^2), friction force -0.13 %, -0.10 %.
-#     Required: the error falls with h and is below 2 % at n = 60 (the target), 4 % at
-#     n = 30; the mean friction force is within 2 % of tan(alpha_b) m g cos(theta).
+#     Required: the error is below 1 % at n = 30 and at n = 60 (the target was 2 % at
+#     n = 60 and 4 % at n = 30); the mean friction force is within 2 % of
+#     tan(alpha_b) m g cos(theta). Until 2026-12-07 the error was also required to fall from
+#     n = 30 to n = 60; it sits at a floor of 0.1 to 0.4 % that does not fall with h (AMD EPYC,
+#     fixed point converged every step: n = 30 -0.187 %, n = 60 -0.188 %, n = 120 -0.433 %;
+#     dt / 4 -0.34 % and -0.30 %; fp_tol 1e-8 -0.29 %; the exact solver -0.37 % and -0.42 %;
+#     the air 100 times lighter -0.41 % and -0.10 %; docs/VERIFICATION.md 5.4), so the order of
+#     n = 30 and n = 60 was round-off: the test failed on that AMD EPYC at -0.187 % / -0.188 %
+#     and passed on an Intel Xeon at -0.25 % / -0.17 %.
 #     The runs allow rheology.fp_max_iter = 300 and require that no step reaches it: with the
 #     default 50, n = 60 capped 39 of 261 steps (last changes up to 8.4e-3), and what the
 #     unconverged steps left depended on the processor: -0.14 % on an AMD EPYC, -1.11 % on an
@@ -67,9 +74,9 @@ for n in (30, 60):
     print(f"n={n}: a = {a:.4f} m/s^2 (exact {exact:.4f}, {100*err[n]:+.2f} %), offset u(t) - exact t at "
           f"t = 0.2 s: {u[-1] - exact * t[-1]:.2e} m/s, mean friction {abs(f[m].mean()):.3f} N/m "
           f"(exact {f_exact:.3f}, {100*ferr[n]:+.2f} %), capped steps {capped[n]}")
-ok = abs(err[60]) < abs(err[30]) and abs(err[30]) < 0.04 and abs(err[60]) < 0.02 \
+ok = all(abs(e) < 0.01 for e in err.values()) \
      and all(abs(e) < 0.02 for e in ferr.values()) and not any(capped.values())
-print("PASS" if ok else "FAIL: acceleration error does not fall with h, or is above 4 % (n=30) / 2 % (n=60), or the friction force is off by more than 2 %, or a step reached fp_max_iter")
+print("PASS" if ok else "FAIL: acceleration error above 1 %, or the friction force off by more than 2 %, or a step reached fp_max_iter")
 sys.exit(0 if ok else 1)
 PY
 "$bin" run "$case_file" --set "physics.gravity=[2.539024, -9.475746]" --set time.t_end=0.1 \
