@@ -925,11 +925,8 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   PetscBool monitor = PETSC_FALSE;
   GF_PETSC(PetscOptionsHasName(nullptr, nullptr, "-exactpd_monitor", &monitor));
   // The rigid cells and sticking wall faces, optionally to a tighter bound (ExactStepOptions::
-  // rigid_tol_factor; -exactpd_rigid_tol_factor f).
-  PetscReal rigid_factor = opt.rigid_tol_factor;
-  GF_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-exactpd_rigid_tol_factor", &rigid_factor,
-                               nullptr));
-  const double rigid_tol = rigid_factor * opt.tol;
+  // rigid_tol_factor).
+  const double rigid_tol = opt.rigid_tol_factor * opt.tol;
   const auto within = [&](const Residual& r) {
     return r.max <= opt.tol && r.rigid <= rigid_tol;
   };

@@ -24,6 +24,10 @@ NewtonPlastic::NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Par
     PetscBool flag = PETSC_TRUE, set = PETSC_FALSE;
     GF_PETSC(PetscOptionsGetBool(nullptr, nullptr, "-exactpd_retract", &flag, &set));
     if (set) opt_.retract = flag == PETSC_TRUE;
+    // -exactpd_rigid_tol_factor f: the rigid cells and sticking faces to f * newton_tol
+    // (ExactStepOptions::rigid_tol_factor).
+    GF_PETSC(PetscOptionsGetReal(nullptr, nullptr, "-exactpd_rigid_tol_factor",
+                                 &opt_.rigid_tol_factor, nullptr));
   }
   if (coupled) {
     saddle_blocks(g, pres_);
