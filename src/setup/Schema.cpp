@@ -149,15 +149,16 @@ void declare_physics(Params& p) {
              "eq. 32 (which can set a rigid zone moving again: a held block or pile moves in "
              "its first steps); coupled = the pressure in the same Newton system (eqs. 31 and "
              "32 solved together: divergence-free and at rest from the first step, but on a "
-             "collapse such as case A many steps reach newton_max_iter and the rigid zones' "
+             "collapse such as case A many steps reached newton_max_iter at 160, and each such "
+             "step takes newton_max_iter iterations: lower it there; the rigid zones' "
              "pressure is not unique; docs/RHEOLOGY.md).");
   p.add_enum("rheology.newton_wall_load", "step_start", kNewtonWallLoads,
              "rheology.solver = newton: the normal load of the Coulomb walls' friction "
              "kappa_b = tan(alpha_b) (-T_n)^+ (eq. 22): step_start = from p^n, S^n and u^n, "
              "frozen for the step as kappa is, so that the step's velocity is unique; iterate "
              "= refreshed from the Newton iterate's S and D(u~) (the paper's kappa_b^{n+1}: "
-             "in a rigid zone S is not unique, and case A at n = 16 then has 294 of its 1060 "
-             "steps reach newton_max_iter; docs/newton_knobs.md).");
+             "in a rigid zone S is not unique, and case A at n = 16 then had 294 of its 1060 "
+             "steps reach newton_max_iter at 160; docs/newton_knobs.md).");
   p.add_real("rheology.newton_tol", "", 1e-6, Range::gt(0),
              "rheology.solver = newton: stop when max |S - P(S + r kappa D)| over the cells and "
              "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this "
@@ -165,8 +166,8 @@ void declare_physics(Params& p) {
              "a dead zone's pressure keeps their residual from step to step; "
              "docs/RHEOLOGY.md).");
   // 1000: a step that converges never reaches the cap, so the figures of the runs that capped no
-  // step are the same; the steps that reached 160 were converging, slowly, through their
-  // yield-limit cells (docs/RHEOLOGY.md, thirteenth session). At n = 64 with the test tighter
+  // step are the same; the steps that reached 160 were converging slowly, not stuck
+  // (docs/RHEOLOGY.md, thirteenth session). At n = 64 with the test tighter
   // (newton_tol / 4, r_factor x 4) case A capped 4 and 5 of 1061 steps at 160 and none at 1000
   // (the hardest step 267 and 385 iterations; +1.8 % and +5.3 % iterations in all), case B 2 of
   // 1360 and none (289; +0.9 %). (160, not 100, since 2026-12-06: case A at n = 128 capped 2 of

@@ -14,16 +14,16 @@
 #     Required: the error is below 1 % at n = 30 and at n = 60 (the target was 2 % at
 #     n = 60 and 4 % at n = 30); the mean friction force is within 2 % of
 #     tan(alpha_b) m g cos(theta). Until 2026-12-07 the error was also required to fall from
-#     n = 30 to n = 60; it sits at a floor of 0.1 to 0.4 % that does not fall with h (AMD EPYC,
+#     n = 30 to n = 60; it sits at a floor of 0.1 to 0.7 % that does not fall with h (AMD EPYC,
 #     fixed point converged every step: n = 30 -0.187 %, n = 60 -0.188 %, n = 120 -0.433 %;
 #     dt / 4 -0.34 % and -0.30 %; fp_tol 1e-8 -0.29 %; the exact solver -0.37 % and -0.42 %;
 #     the air 100 times lighter -0.41 % and -0.10 %; docs/VERIFICATION.md 5.4), so the order of
 #     n = 30 and n = 60 was round-off: the test failed on that AMD EPYC at -0.187 % / -0.188 %
-#     and passed on an Intel Xeon at -0.25 % / -0.17 %. The floor is made late in the run: the
-#     block's stress is not unique (rigid) and stays on the grid while the block crosses it, its
-#     rear goes into tension, the wall's load (p + kappa S_nn)+ clips it and the friction rises
-#     (another AMD EPYC, 2026-12-07: n = 60 -0.64 %, of which -0.11 % over [0.02, 0.1] s and
-#     -1.33 % over [0.1, 0.2] s; docs/VERIFICATION.md 5.4).
+#     and passed on an Intel Xeon at -0.25 % / -0.17 %. On another AMD EPYC (2026-12-07) the
+#     same runs give -0.22 % and -0.64 %; at n = 60 the fit over [0.02, 0.1] s gives -0.11 % and
+#     the one over [0.1, 0.2] s -1.33 %. Late in the run the rigid block's base loses load,
+#     likely because its stress, not unique, puts the rear in tension, and the friction takes
+#     the wall load's positive part (docs/VERIFICATION.md 5.4).
 #     The runs allow rheology.fp_max_iter = 300 and require that no step reaches it: with the
 #     default 50, n = 60 capped 39 of 261 steps (last changes up to 8.4e-3), and what the
 #     unconverged steps left depended on the processor: -0.14 % on an AMD EPYC, -1.11 % on an
