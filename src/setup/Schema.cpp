@@ -167,11 +167,12 @@ void declare_physics(Params& p) {
              "docs/RHEOLOGY.md).");
   // 1000: a step that converges never reaches the cap, so the figures of the runs that capped no
   // step are the same; the steps that reached 160 were converging slowly, not stuck
-  // (docs/RHEOLOGY.md, thirteenth session). At n = 64 with the test tighter
-  // (newton_tol / 4, r_factor x 4) case A capped 4 and 5 of 1061 steps at 160 and none at 1000
-  // (the hardest step 267 and 385 iterations; +1.8 % and +5.3 % iterations in all), case B 2 of
-  // 1360 and none (289; +0.9 %). (160, not 100, since 2026-12-06: case A at n = 128 capped 2 of
-  // its first 13 steps at 100.)
+  // (docs/RHEOLOGY.md, thirteenth session). The five knob runs at n = 64 that capped steps at 160
+  // cap none at 1000: case A newton_tol / 4, r_factor x 4 and r_factor / 4 (4, 5 and 1 of 1061
+  // at 160; the hardest step 267, 385 and 180 iterations), case B r_factor x 4 and newton_tol / 4
+  // (2 and 1 of 1360; 289 and 177), for -2.1 to +5.3 % iterations in all. Case A's r_factor / 4
+  // run then moves the peak granular pressure by 2.2e-4 (5e-6 when its step ended at the cap).
+  // (160, not 100, since 2026-12-06: case A at n = 128 capped 2 of its first 13 steps at 100.)
   p.add_int("rheology.newton_max_iter", "", 1000, closed(1, 1e6),
             "rheology.solver = newton: most Newton iterations per time step (a step that "
             "reaches it is counted as capped, like the fixed point's).");
