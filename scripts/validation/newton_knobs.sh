@@ -5,7 +5,9 @@
 # Usage: scripts/validation/newton_knobs.sh [n_A] [n_B] [out.md]   (defaults 16 16
 # docs/newton_knobs.md; 2 runs at a time; about 8 minutes at 16 on this 2-core machine, about
 # 10 minutes per Newton run at 32). RUNS="a_newton a_newton_r_div4 ..." runs only those (the
-# names below); the table then has only their rows.
+# names below); the table then has only their rows. T_END=0.2 stops every run there (case A's
+# and B's peak granular pressures are made before it). The tolerances are 4 times the default
+# newton_tol (1e-7, src/setup/Schema.cpp) each way.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 "$root/scripts/build.sh" > /dev/null
@@ -24,18 +26,18 @@ job() {  # job <name> <args...>: at most two at a time
 }
 for c in a b; do
   if [[ $c == a ]]; then f=cases/ar07_rough.toml; n=$na; else f=cases/ar2_smooth.toml; n=$nb; fi
-  A=("$root/$f" --set grid.n=$n --set output.vtk_interval=0)
+  A=("$root/$f" --set grid.n=$n --set output.vtk_interval=0 ${T_END:+--set time.t_end=$T_END})
   N=("${A[@]}" --set rheology.solver=newton)
   job ${c}_newton "${N[@]}"
   job ${c}_newton_r_div4 "${N[@]}" --set rheology.r_factor=0.125
   job ${c}_newton_r_x4 "${N[@]}" --set rheology.r_factor=2
-  job ${c}_newton_tol_div4 "${N[@]}" --set rheology.newton_tol=2.5e-7
-  job ${c}_newton_tol_x4 "${N[@]}" --set rheology.newton_tol=4e-6
+  job ${c}_newton_tol_div4 "${N[@]}" --set rheology.newton_tol=2.5e-8
+  job ${c}_newton_tol_x4 "${N[@]}" --set rheology.newton_tol=4e-7
   job ${c}_newton_iterate "${N[@]}" --set rheology.newton_wall_load=iterate
   job ${c}_fp "${A[@]}"
   job ${c}_fp_r_div4 "${A[@]}" --set rheology.r_factor=0.125
 done
 wait
 /usr/bin/python3 "$root/scripts/validation/newton_knobs.py" "$out" "$md" \
-  "${RUNS:+RUNS=\"$RUNS\" }scripts/validation/newton_knobs.sh $na $nb${3:+ $3}" "$na" "$nb" \
+  "${T_END:+T_END=$T_END }${RUNS:+RUNS=\"$RUNS\" }scripts/validation/newton_knobs.sh $na $nb${3:+ $3}" "$na" "$nb" \
   ${RUNS:+$RUNS}

@@ -10,7 +10,8 @@
 #     is not the block's, and the projection that follows the exact plastic step corrects the
 #     velocity: the split of eqs. 31-32), then it comes to rest: over [0.06, 0.1] s the mean
 #     granular speed stays below 1e-8 m/s and at t = 0.1 s the largest granular speed is below
-#     1e-6 m/s. Measured: mean 2.6e-9 m/s at most, largest 2.0e-7 m/s, no step capped. With
+#     1e-6 m/s. Measured: mean 4.5e-9 m/s at most, largest 2.0e-7 m/s, no step capped (2.6e-9
+#     and 2.0e-7 at the newton_tol of 1e-6 used until 2026-12-07). With
 #     the walls' load refreshed from the iterate (newton_wall_load = "iterate"), 7 steps capped
 #     with residuals below newton_tol but kappa_b still changing: the wall traction of a held
 #     block and its internal stress are not unique, and kappa_b, which includes kappa S_nn
@@ -24,13 +25,16 @@
 #     2e-5 at 4 ms, 6.4e-7 at 10 ms. Measured to 1 s (0.15 s per step): 6.4e-7 m/s at most
 #     from 10 ms on, 4.6e-15 m/s at 1 s; the fixed point: 1.7e-4 m/s at 10 ms, 1.6e-7 m/s at 1 s.
 #     With the default load from the step's start it is printed, not required (the friction
-#     lags the first steps' settling by a step): measured 1.3e-6 m/s from 10 ms on, 4e-9 at 0.1 s.
+#     lags the first steps' settling by a step): measured 7.8e-7 m/s from 10 ms on, 4e-9 at 0.1 s
+#     (1.3e-6 from 10 ms on at newton_tol 1e-6). In the suite's 0.1 s with the load from the
+#     iterate: 5.8e-7 m/s from 10 ms on, 3.8e-9 at 0.1 s.
 #  4. The same with the pressure in the Newton system (rheology.newton_pressure = "coupled"):
 #     no projection after the plastic step, so the block and the pile are at rest from the
 #     first step: the largest granular speed at every output (from t = 0.01 s for the block,
 #     5 ms for the pile) below 1e-8 m/s, and the block slides within 1 % with no capped step.
-#     Measured: held block 1.4e-14 m/s at most, pile 1.1e-10 m/s, slide -0.50 % (with the load
-#     from the iterate: 9.6e-21 m/s, 3.0e-10 m/s, -0.48 %).
+#     Measured: held block 7.4e-17 m/s at most, pile 5.6e-10 m/s, slide -0.49 % (at newton_tol
+#     1e-6: 1.4e-14 m/s, 1.1e-10 m/s, -0.50 %; with the load from the iterate: 9.6e-21 m/s,
+#     3.0e-10 m/s, -0.48 %).
 #  5. Bingham cessation on the paper's cell-only grid (cases/verify/bingham_cessation.toml with
 #     rheology.plastic_grid = "cell", n = 16, dt 5e-3): with the pressure in the Newton system
 #     the vortex stops in finite time, the kinetic energy below 1e-20 of its start from t = 0.4 s
@@ -40,15 +44,16 @@
 #  6. The knobs, on that cessation with the pressure: rheology.r_factor and rheology.newton_tol
 #     each 4 times their default do not move KE(0.3 s) by more than 1e-6 relative nor the stop
 #     time T_f (where sqrt(KE) extrapolated from 0.34 and 0.345 s reaches zero) by more than
-#     1e-4 s. Measured: 2.0e-9 and 4.0e-8; T_f = 0.34816 s in all three (and with r_factor / 4,
-#     newton_tol / 4: 4.4e-9, 3.9e-9).
+#     1e-4 s. Measured: 1.0e-8 and 1.3e-9; T_f = 0.34816 s in all three (at newton_tol 1e-6:
+#     2.0e-9 and 4.0e-8, and with r_factor / 4, newton_tol / 4: 4.4e-9, 3.9e-9).
 #  7. Case A (cases/ar07_rough.toml) at n = 16 to 0.6 s (past its stop), the walls' load from
 #     the step's start (the default): every step converges (none ends at newton_max_iter), and
 #     rheology.r_factor / 4 and rheology.newton_tol x 4 move its
 #     runout, furthest front, back-wall height and peak granular pressure by at most 1e-4
 #     relative, and its stage times not at all (issue 19's knob criterion, at a coarse grid).
-#     Measured to 1.06 s (docs/newton_knobs.md): 0 of 1060 steps capped; in the suite's 0.6 s
-#     1.3e-5 and 1.9e-5. Without the rigid steps' boost (ExactStepOptions::rigid_boost_max = 1)
+#     Measured to 1.06 s (docs/newton_knobs.md, at newton_tol 1e-6): 0 of 1060 steps capped; in
+#     the suite's 0.6 s 2.8e-6 and 2.3e-6 at the default newton_tol of 1e-7 (1.3e-5 and 1.9e-5
+#     at 1e-6, the default until 2026-12-07, and newton_tol x 4 was then 4e-6). Without the rigid steps' boost (ExactStepOptions::rigid_boost_max = 1)
 #     9 of 1060 steps were capped. With the load refreshed from the iterate 322 steps were
 #     capped and the tolerance moved the peak pressure by 2.4e-4. At n = 8 the peak pressure
 #     moved by 2.5e-4 (r / 4, before this session's line-search change): the deposit's pressure
@@ -83,11 +88,11 @@ bg() {
 }
 bg a16 "${A[@]}"
 bg a16_r "${A[@]}" --set rheology.r_factor=0.125
-bg a16_tol "${A[@]}" --set rheology.newton_tol=4e-6
+bg a16_tol "${A[@]}" --set rheology.newton_tol=4e-7
 bg cess_c "${CESS[@]}" "${C[@]}"
 bg cess_p "${CESS[@]}"
 bg cess_r4 "${CESS[@]}" "${C[@]}" --set rheology.r_factor=2
-bg cess_tol4 "${CESS[@]}" "${C[@]}" --set rheology.newton_tol=4e-6
+bg cess_tol4 "${CESS[@]}" "${C[@]}" --set rheology.newton_tol=4e-7
 bg pile "${PILE[@]}" --set rheology.newton_wall_load=iterate
 bg pile_s "${PILE[@]}"
 bg pile_c "${PILE[@]}" "${C[@]}"
