@@ -54,9 +54,10 @@
 #     relative, and its stage times not at all (issue 19's knob criterion, at a coarse grid).
 #     Measured to 1.06 s (docs/newton_knobs.md, at newton_tol 1e-6): 0 of 1060 steps capped; in
 #     the suite's 0.6 s 2.8e-6 and 2.3e-6 at the default newton_tol of 1e-7 (1.3e-5 and 1.9e-5
-#     at 1e-6, the default until 2026-12-07, and newton_tol x 4 was then 4e-6). Without the rigid steps' boost (ExactStepOptions::rigid_boost_max = 1)
-#     9 of 1060 steps were capped. With the load refreshed from the iterate 322 steps were
-#     capped and the tolerance moved the peak pressure by 2.4e-4. At n = 8 the peak pressure
+#     at 1e-6, the default until 2026-12-07, and newton_tol x 4 was then 4e-6). Without the
+#     rigid steps' boost (ExactStepOptions::rigid_boost_max = 1) 9 of 1060 steps were capped.
+#     With the load refreshed from the iterate 322 steps were capped and the tolerance moved the
+#     peak pressure by 2.4e-4. At n = 8 the peak pressure
 #     moved by 2.5e-4 (r / 4, before this session's line-search change): the deposit's pressure
 #     follows its rigid zones' S, which is not unique.
 # Usage: bash test_newton_plastic.sh <granflow binary> <source dir>
