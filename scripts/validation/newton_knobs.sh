@@ -6,8 +6,11 @@
 # docs/newton_knobs.md; 2 runs at a time; about 8 minutes at 16 on this 2-core machine, about
 # 10 minutes per Newton run at 32). RUNS="a_newton a_newton_r_div4 ..." runs only those (the
 # names below); the table then has only their rows. T_END=0.2 stops every run there (case A's
-# and B's peak granular pressures are made before it). The tolerances are 4 times the default
-# newton_tol (1e-7, src/setup/Schema.cpp) each way.
+# and B's peak granular pressures are made before it). T_SPLIT=0.2 runs each case to 0.2 s and
+# then continues it with --restart to its case file's end, so that a 0.2-s table and the whole
+# runs' table come from the same runs (every run then shares the same time grid: a run stopped
+# at 0.2 s shortens its last step to land there, which shifts the later steps; RHEOLOGY.md).
+# The tolerances are 4 times the default newton_tol (1e-7, src/setup/Schema.cpp) each way.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 "$root/scripts/build.sh" > /dev/null
@@ -21,11 +24,15 @@ job() {  # job <name> <args...>: at most two at a time
   local name="$1"; shift
   [[ -z "${RUNS:-}" || " $RUNS " == *" $name "* ]] || return 0
   rm -f "$out/$name.failed"
-  { "$bin" run "$@" --out "$out/$name" --overwrite > "$out/$name.log" 2>&1 ||
+  { "$bin" run "$@" ${T_SPLIT:+--set time.t_end=$T_SPLIT} --out "$out/$name" --overwrite \
+      > "$out/$name.log" 2>&1 &&
+    { [[ -z "${T_SPLIT:-}" ]] ||
+      "$bin" run --restart "$out/$name" --set time.t_end=$t_case >> "$out/$name.log" 2>&1; } ||
       touch "$out/$name.failed"; } &
 }
 for c in a b; do
   if [[ $c == a ]]; then f=cases/ar07_rough.toml; n=$na; else f=cases/ar2_smooth.toml; n=$nb; fi
+  t_case="$(sed -n 's/^t_end *= *\([0-9.e+-]*\).*/\1/p' "$root/$f" | head -1)"
   A=("$root/$f" --set grid.n=$n --set output.vtk_interval=0 ${T_END:+--set time.t_end=$T_END})
   N=("${A[@]}" --set rheology.solver=newton)
   job ${c}_newton "${N[@]}"
@@ -39,5 +46,5 @@ for c in a b; do
 done
 wait
 /usr/bin/python3 "$root/scripts/validation/newton_knobs.py" "$out" "$md" \
-  "${T_END:+T_END=$T_END }${RUNS:+RUNS=\"$RUNS\" }scripts/validation/newton_knobs.sh $na $nb${3:+ $3}" "$na" "$nb" \
+  "${T_END:+T_END=$T_END }${T_SPLIT:+T_SPLIT=$T_SPLIT }${RUNS:+RUNS=\"$RUNS\" }scripts/validation/newton_knobs.sh $na $nb${3:+ $3}" "$na" "$nb" \
   ${RUNS:+$RUNS}
