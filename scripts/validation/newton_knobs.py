@@ -1,5 +1,6 @@
 """Writes the table of scripts/validation/newton_knobs.sh from its runs' summary.json files."""
 import datetime
+import json
 import os
 import sys
 
@@ -19,6 +20,16 @@ ROWS = [("newton", "newton, defaults (r_factor 0.5, newton_tol 1e-7, wall load s
 
 def load(name):
     return gr.Run(os.path.join(out, name)).summary
+
+
+def wall_s(name, s):
+    """The run's wall time; a run continued by --restart (newton_knobs.sh's T_SPLIT) adds its
+    first part's, which summary_split.json keeps (summary.json has the continuation's alone)."""
+    split = os.path.join(out, name, "summary_split.json")
+    if os.path.exists(split):
+        with open(split) as f:
+            return s["wall_s"] + json.load(f)["wall_s"]
+    return s["wall_s"]
 
 
 def row_label(key, name):
@@ -85,7 +96,7 @@ for c, label, n in (("a", "Case A (`cases/ar07_rough.toml`)", na), ("b", "Case B
                      f"{s['backwall_height_m']:.7f} | {t} | {s['max_p_granular_ratio']:.6f} | "
                      f"{mv} | {anys} | {same} | "
                      f"{s.get('warnings_fp_capped_steps', 0)} of {s['steps']} | {s['fp_iters_total']} | "
-                     f"{s['wall_s']:.1f} |")
+                     f"{wall_s(f'{c}_{key}', s):.1f} |")
     lines.append("")
 with open(md, "w") as f:
     f.write("\n".join(lines))

@@ -27,7 +27,8 @@ job() {  # job <name> <args...>: at most two at a time
   { "$bin" run "$@" ${T_SPLIT:+--set time.t_end=$T_SPLIT} --out "$out/$name" --overwrite \
       > "$out/$name.log" 2>&1 &&
     { [[ -z "${T_SPLIT:-}" ]] ||
-      "$bin" run --restart "$out/$name" --set time.t_end=$t_case >> "$out/$name.log" 2>&1; } ||
+      { cp "$out/$name/summary.json" "$out/$name/summary_split.json" &&
+        "$bin" run --restart "$out/$name" --set time.t_end=$t_case >> "$out/$name.log" 2>&1; }; } ||
       touch "$out/$name.failed"; } &
 }
 for c in a b; do
