@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/Error.hpp"
+#include "grid/Local.hpp"
 
 namespace gf::momentum {
 
@@ -228,6 +229,68 @@ ExactPlasticStep::ExactPlasticStep(const Grid& g) : g_(g) {
   for (Vec* v : {&psi_prev_, &psi_newton_}) GF_PETSC(DMCreateGlobalVector(g.dm_cell(), v));
 }
 
+void ExactPlasticStep::side_matrices() {
+  const Box& b = g_.box();
+  if (!I_) {
+    for (Vec* v : {&srhs_, &ks0_, &Us_, &ss_prev_, &ss_newton_, &ss_best_})
+      GF_PETSC(DMCreateGlobalVector(g_.dm_vel(), v));
+    // I: U_x of cell (i, j) = (u(i, j) + u(i + 1, j)) / 2, U_y = (v(i, j) + v(i, j + 1)) / 2
+    // (grid/Local.hpp cell_centre_velocity), over the faces that are unknowns: the wall faces
+    // (u at i = 0 and nx without periodic x, v at j = 0 and ny) are not, and their values
+    // enter the linearisation as a constant (linearise_side). Indices through the DM's
+    // local-to-global map, which wraps the periodic seam.
+    PetscInt n, gxs, gys, gxm, gym;
+    GF_PETSC(VecGetLocalSize(Us_, &n));
+    GF_PETSC(DMDAGetGhostCorners(g_.dm_vel(), &gxs, &gys, nullptr, &gxm, &gym, nullptr));
+    ISLocalToGlobalMapping l2g;
+    GF_PETSC(DMGetLocalToGlobalMapping(g_.dm_vel(), &l2g));
+    GF_PETSC(MatCreateAIJ(g_.comm(), n, n, PETSC_DETERMINE, PETSC_DETERMINE, 2, nullptr, 2,
+                          nullptr, &I_));
+    GF_PETSC(MatSetLocalToGlobalMapping(I_, l2g, l2g));
+    const auto loc = [&](PetscInt i, PetscInt j, int comp) {
+      return ((j - gys) * gxm + (i - gxs)) * 2 + comp;
+    };
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i) {
+        PetscInt row = loc(i, j, 0), cols[2];
+        const PetscScalar half[2] = {0.5, 0.5};
+        int nc = 0;
+        if (!b.wall_u(i)) cols[nc++] = loc(i, j, 0);
+        if (!b.wall_u(i + 1)) cols[nc++] = loc(i + 1, j, 0);
+        if (nc) GF_PETSC(MatSetValuesLocal(I_, 1, &row, nc, cols, half, INSERT_VALUES));
+        row = loc(i, j, 1);
+        nc = 0;
+        if (j >= 1) cols[nc++] = loc(i, j, 1);
+        if (j + 1 <= b.ny - 1) cols[nc++] = loc(i, j + 1, 1);
+        if (nc) GF_PETSC(MatSetValuesLocal(I_, 1, &row, nc, cols, half, INSERT_VALUES));
+      }
+    GF_PETSC(MatAssemblyBegin(I_, MAT_FINAL_ASSEMBLY));
+    GF_PETSC(MatAssemblyEnd(I_, MAT_FINAL_ASSEMBLY));
+  }
+  // Ms: a 2 x 2 block in each cell with k > 0 (the step's k is fixed), so that SIDE_ = I^T Ms I
+  // and J's pattern cover only the cells the friction acts on.
+  MatDestroy(&Ms_);
+  MatDestroy(&SIDE_);
+  PetscInt n, r0;
+  GF_PETSC(VecGetLocalSize(Us_, &n));
+  GF_PETSC(VecGetOwnershipRange(Us_, &r0, nullptr));
+  GF_PETSC(MatCreateAIJ(g_.comm(), n, n, PETSC_DETERMINE, PETSC_DETERMINE, 2, nullptr, 0, nullptr,
+                        &Ms_));
+  const PetscScalar* k;
+  GF_PETSC(VecGetArrayRead(side_->k, &k));
+  const PetscScalar zero[4] = {0, 0, 0, 0};
+  for (PetscInt c = 0; c < b.xm * b.ym; ++c)
+    if (k[c] > 0) {
+      const PetscInt rc[2] = {r0 + 2 * c, r0 + 2 * c + 1};
+      GF_PETSC(MatSetValues(Ms_, 2, rc, 2, rc, zero, INSERT_VALUES));
+    }
+  GF_PETSC(VecRestoreArrayRead(side_->k, &k));
+  GF_PETSC(MatAssemblyBegin(Ms_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(MatAssemblyEnd(Ms_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(MatSetOption(Ms_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  GF_PETSC(MatPtAP(Ms_, I_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &SIDE_));
+}
+
 void ExactPlasticStep::make_M(bool granular_only) {
   MatDestroy(&M_);
   PetscInt n, r0;
@@ -258,6 +321,10 @@ ExactPlasticStep::~ExactPlasticStep() {
   MatDestroy(&Jloc_);
   VecDestroy(&work_vel_);
   for (Vec* v : {&u_best_, &S_best_, &sw_best_}) VecDestroy(v);
+  for (Vec* v : {&srhs_, &ks0_, &Us_, &ss_prev_, &ss_newton_, &ss_best_}) VecDestroy(v);
+  MatDestroy(&I_);
+  MatDestroy(&Ms_);
+  MatDestroy(&SIDE_);
   MatDestroy(&K_);
   MatDestroy(&Zk_);
   for (Vec* v : {&X_, &R_, &psi_prev_, &psi_newton_, &zdiag_}) VecDestroy(v);
@@ -354,6 +421,12 @@ void ExactPlasticStep::jacobian_pattern(Mat A) {
   MatDestroy(&AJ_);
   GF_PETSC(MatMatMatMult(m_->C, M_, m_->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CMB_));
   GF_PETSC(MatDuplicate(CMB_, MAT_DO_NOT_COPY_VALUES, &J_));
+  if (side_) {  // the side walls' pattern too, with zeros (AJ_ must hold A's values alone)
+    Mat z;
+    GF_PETSC(MatDuplicate(SIDE_, MAT_DO_NOT_COPY_VALUES, &z));
+    GF_PETSC(MatAXPY(J_, 1.0, z, DIFFERENT_NONZERO_PATTERN));
+    MatDestroy(&z);
+  }
   GF_PETSC(MatAXPY(J_, 1.0, A, DIFFERENT_NONZERO_PATTERN));  // A in the union of the patterns
   GF_PETSC(MatDuplicate(J_, MAT_COPY_VALUES, &AJ_));
   if (spd_) set_spd(J_);
@@ -605,11 +678,13 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
   GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
   double wl2 = 0, wmax = 0, wrig = 0;
   const size_t ncell = static_cast<size_t>(b.xm) * b.ym;
-  if (active_.size() != 3 * ncell) active_.assign(3 * ncell, 0);  // the cells, then their faces
+  // the cells, then their faces, then the cells' side-wall friction
+  if (active_.size() != 4 * ncell) active_.assign(4 * ncell, 0);
   double wchanges = 0;
   if (walls_) {
     wmax = linearise_walls(u, opt, wl2, wchanges, wrig);
   }
+  if (side_) wmax = std::max(wmax, linearise_side(u, opt, wl2, wchanges, wrig));
   const PetscScalar ***d, ***d0, ***lam, **k, **c, **cr = nullptr;
   PetscScalar*** t;
   if (c_rigid_) GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), c_rigid_, &cr));
@@ -788,9 +863,117 @@ void ExactPlasticStep::newton_update_walls(Vec u) {
   GF_PETSC(VecRestoreArrayRead(u, &uu));
 }
 
+// The side walls' part of linearise (see NewtonSide): lins_, Ms_, srhs_; returns the local max
+// of |s - P(s + c_s U)| and adds its squares to l2.
+double ExactPlasticStep::linearise_side(Vec u, const ExactStepOptions& opt, double& l2,
+                                        double& changes, double& rigid) {
+  const Box& b = g_.box();
+  const size_t ncell = static_cast<size_t>(b.xm) * b.ym;
+  GF_PETSC(MatMult(I_, u, Us_));  // the unknown faces' part of U
+  const LocalVelocity v(g_, u);
+  const PetscScalar *k, *c, *s, *iu;
+  PetscScalar* ks0;
+  GF_PETSC(VecGetArrayRead(side_->k, &k));
+  GF_PETSC(VecGetArrayRead(side_->c, &c));
+  GF_PETSC(VecGetArrayRead(side_->s, &s));
+  GF_PETSC(VecGetArrayRead(Us_, &iu));
+  GF_PETSC(VecGetArray(ks0_, &ks0));
+  PetscInt r0;
+  GF_PETSC(VecGetOwnershipRange(Us_, &r0, nullptr));
+  lins_.assign(5 * ncell, 0.0);
+  double mx = 0;
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const size_t cell = static_cast<size_t>((j - b.ys) * b.xm + (i - b.xs));
+      ks0[2 * cell] = ks0[2 * cell + 1] = 0.0;
+      const double kk = k[cell];
+      if (kk <= 0) continue;
+      const double cs = c[cell];
+      double U[2];
+      cell_centre_velocity(v, i, j, U[0], U[1]);
+      // U = I u + U0: U0 the wall faces' part, a constant of the step (zero on walls at rest).
+      const double U0[2] = {U[0] - iu[2 * cell], U[1] - iu[2 * cell + 1]};
+      const double sv[2] = {s[2 * cell], s[2 * cell + 1]};
+      const double qr[2] = {sv[0] + cs * U[0], sv[1] + cs * U[1]};
+      const double nqr = std::hypot(qr[0], qr[1]);
+      const double f = nqr > 1 ? 1 / nqr : 1.0;
+      const double r = std::hypot(sv[0] - f * qr[0], sv[1] - f * qr[1]);
+      if (r > worst_.r) worst_ = {r, static_cast<int>(i), static_cast<int>(j), 3, nqr};
+      mx = std::max(mx, r);
+      l2 += r * r;
+      // Linearised at s retracted onto the disc, as the cells' S (ExactStepOptions::retract).
+      const double ns = std::hypot(sv[0], sv[1]);
+      const double fs = opt.retract && !pres_ && ns > 1 ? 1 / ns : 1.0;
+      const double sl[2] = {fs * sv[0], fs * sv[1]};
+      const double q[2] = {sl[0] + cs * U[0], sl[1] + cs * U[1]};
+      const double nq = std::hypot(q[0], q[1]);
+      const signed char cls = nq <= 1 ? 1 : 2;
+      if (cls == 1) rigid = std::max(rigid, r);
+      signed char& a = active_[3 * ncell + cell];
+      if (a != 0 && a != cls) ++changes;
+      a = cls;
+      double G[2][2] = {{0, 0}, {0, 0}}, s0[2];
+      if (cls == 1) {  // sticking: U = 0 in its augmented form, the cells' rigid step
+        G[0][0] = G[1][1] = boost_ * opt.rigid_factor * cs;
+        s0[0] = sl[0];
+        s0[1] = sl[1];
+      } else {  // sliding: Newton on s = q / |q|
+        const double n[2] = {q[0] / nq, q[1] / nq};
+        const double gam = cs / std::max(nq - 1, opt.gap_floor);
+        G[0][0] = gam * (1 - n[0] * n[0]);
+        G[0][1] = G[1][0] = -gam * n[0] * n[1];
+        G[1][1] = gam * (1 - n[1] * n[1]);
+        s0[0] = n[0];
+        s0[1] = n[1];
+      }
+      double* l = &lins_[5 * cell];
+      l[0] = s0[0];
+      l[1] = s0[1];
+      l[2] = G[0][0];
+      l[3] = G[0][1];
+      l[4] = G[1][1];
+      // s = s0 + G (I u + U0): the force -I^T k s puts k (s0 + G U0) on the right-hand side
+      // and I^T k G I into the Newton matrix.
+      ks0[2 * cell] = kk * (s0[0] + G[0][0] * U0[0] + G[0][1] * U0[1]);
+      ks0[2 * cell + 1] = kk * (s0[1] + G[1][0] * U0[0] + G[1][1] * U0[1]);
+      const PetscInt rc[2] = {r0 + 2 * static_cast<PetscInt>(cell),
+                              r0 + 2 * static_cast<PetscInt>(cell) + 1};
+      const PetscScalar kg[4] = {kk * G[0][0], kk * G[0][1], kk * G[1][0], kk * G[1][1]};
+      GF_PETSC(MatSetValues(Ms_, 2, rc, 2, rc, kg, INSERT_VALUES));
+    }
+  GF_PETSC(VecRestoreArray(ks0_, &ks0));
+  GF_PETSC(VecRestoreArrayRead(Us_, &iu));
+  GF_PETSC(VecRestoreArrayRead(side_->s, &s));
+  GF_PETSC(VecRestoreArrayRead(side_->c, &c));
+  GF_PETSC(VecRestoreArrayRead(side_->k, &k));
+  GF_PETSC(MatAssemblyBegin(Ms_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(MatAssemblyEnd(Ms_, MAT_FINAL_ASSEMBLY));
+  GF_PETSC(MatMultTranspose(I_, ks0_, srhs_));
+  GF_PETSC(VecScale(srhs_, -1.0));
+  return mx;
+}
+
+void ExactPlasticStep::newton_update_side(Vec u) {
+  const Box& b = g_.box();
+  const LocalVelocity v(g_, u);
+  PetscScalar* s;
+  GF_PETSC(VecGetArray(side_->s, &s));
+  for (PetscInt j = b.ys; j < b.ye(); ++j)
+    for (PetscInt i = b.xs; i < b.xe(); ++i) {
+      const size_t cell = static_cast<size_t>((j - b.ys) * b.xm + (i - b.xs));
+      const double* l = &lins_[5 * cell];
+      double U[2];
+      cell_centre_velocity(v, i, j, U[0], U[1]);
+      s[2 * cell] = l[0] + l[2] * U[0] + l[3] * U[1];  // zero where k = 0 (lins_ holds zeros)
+      s[2 * cell + 1] = l[1] + l[3] * U[0] + l[4] * U[1];
+    }
+  GF_PETSC(VecRestoreArray(side_->s, &s));
+}
+
 void ExactPlasticStep::newton_update(Vec u) {
   const Box& b = g_.box();
   if (walls_) newton_update_walls(u);
+  if (side_) newton_update_side(u);
   GF_PETSC(MatMultAdd(m_->B, u, m_->d0, D_));
   const PetscScalar*** d;
   PetscScalar*** lam;
@@ -812,8 +995,10 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
                                               Vec c, Vec u, Vec S, const ExactStepOptions& opt,
                                               const NewtonWalls* walls, Vec c_rigid,
                                               const NewtonPressure* pressure,
-                                              const std::vector<PetscInt>* local_rows) {
+                                              const std::vector<PetscInt>* local_rows,
+                                              const NewtonSide* side) {
   walls_ = walls;
+  side_ = side;
   pres_ = pressure;
   c_rigid_ = c_rigid;
   A_ = A;
@@ -826,6 +1011,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
   // cost what the granular region holds, not the grid (case A at n = 64: the MatAXPY of
   // fill_jacobian 10 ms per iteration over the whole grid).
   make_M(true);
+  if (side_) side_matrices();
   std::fill(active_.begin(), active_.end(), 0);  // no class yet: the first linearisation sets it
   boost_ = 1;
   int calm = 0;  // iterations since the active sets last changed
@@ -987,6 +1173,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       GF_PETSC(VecCopy(u, u_best_));
       GF_PETSC(VecCopy(lambda_, S_best_));
       if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_best_));
+      if (side_) GF_PETSC(VecCopy(side_->s, ss_best_));
     }
     // (Restarts from the best iterate with a smaller c were tried until 2026-12-06: with the
     // stopping test at the step's own c they capped more steps, not fewer; docs/RHEOLOGY.md.)
@@ -997,6 +1184,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
         GF_PETSC(VecCopy(u_best_, u));
         GF_PETSC(VecCopy(S_best_, lambda_));
         if (walls_) GF_PETSC(VecCopy(sw_best_, walls_->s_wall));
+        if (side_) GF_PETSC(VecCopy(ss_best_, side_->s));
         res = linearise(u, opt);
         st.change = res.max;
         st.rigid = res.rigid;
@@ -1010,6 +1198,12 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     if (walls_) {
       GF_PETSC(MatDiagonalSet(J_, wdiag_, ADD_VALUES));
       GF_PETSC(VecAXPY(rhs_, 1.0, wrhs_));
+    }
+    if (side_) {
+      GF_PETSC(MatPtAP(Ms_, I_, MAT_REUSE_MATRIX, PETSC_DEFAULT, &SIDE_));
+      GF_PETSC(MatAXPY(J_, 1.0, SIDE_, SUBSET_NONZERO_PATTERN));
+      if (spd_) set_spd(J_);
+      GF_PETSC(VecAXPY(rhs_, 1.0, srhs_));
     }
     if (pres_) {
       solve_saddle(u, it);
@@ -1047,6 +1241,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
       GF_PETSC(VecCopy(u, u_newton_));
       GF_PETSC(VecCopy(lambda_, S_newton_));
       if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_newton_));
+      if (side_) GF_PETSC(VecCopy(side_->s, ss_newton_));
       if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_newton_));
       // After creep_steps iterations in a row whose line search accepted a step of 1/64 or
       // less, the Newton point is taken whole (ExactStepOptions::creep_steps).
@@ -1059,6 +1254,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
         GF_PETSC(VecAXPBYPCZ(lambda_, 1 - tau, tau, 0.0, S_prev_, S_newton_));
         if (walls_)
           GF_PETSC(VecAXPBYPCZ(walls_->s_wall, 1 - tau, tau, 0.0, sw_prev_, sw_newton_));
+        if (side_) GF_PETSC(VecAXPBYPCZ(side_->s, 1 - tau, tau, 0.0, ss_prev_, ss_newton_));
         if (pres_) GF_PETSC(VecAXPBYPCZ(pres_->psi, 1 - tau, tau, 0.0, psi_prev_, psi_newton_));
         res = linearise(u, opt);
         ++st.backtracks;
@@ -1077,6 +1273,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
         GF_PETSC(VecCopy(u_newton_, u));
         GF_PETSC(VecCopy(S_newton_, lambda_));
         if (walls_) GF_PETSC(VecCopy(sw_newton_, walls_->s_wall));
+        if (side_) GF_PETSC(VecCopy(ss_newton_, side_->s));
         if (pres_) GF_PETSC(VecCopy(psi_newton_, pres_->psi));
         res = linearise(u, opt);
       }
@@ -1100,6 +1297,7 @@ ExactStepStats ExactPlasticStep::solve_newton(Mat A, Vec b, const PlasticMatrice
     GF_PETSC(VecCopy(u, u_prev_));
     GF_PETSC(VecCopy(lambda_, S_prev_));
     if (walls_) GF_PETSC(VecCopy(walls_->s_wall, sw_prev_));
+    if (side_) GF_PETSC(VecCopy(side_->s, ss_prev_));
     if (pres_) GF_PETSC(VecCopy(pres_->psi, psi_prev_));
   }
   GF_PETSC(VecCopy(lambda_, S));
@@ -1123,9 +1321,9 @@ void ExactPlasticStep::print_worst() const {
   } in{worst_.r, g_.rank()}, out{};
   MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, g_.comm());
   if (out.rank != g_.rank() || worst_.r < 0) return;
-  static const char* kind[3] = {"cell", "wall face u", "wall face v"};
+  static const char* kind[4] = {"cell", "wall face u", "wall face v", "side walls of cell"};
   std::printf("    largest at %s (%d, %d): %s = %.9f\n", kind[worst_.kind], worst_.i, worst_.j,
-              worst_.kind == 0 ? "|q|" : "q", worst_.q);
+              worst_.kind == 0 || worst_.kind == 3 ? "|q|" : "q", worst_.q);
   std::fflush(stdout);
 }
 

@@ -158,6 +158,21 @@ struct NewtonWalls {
   std::function<void(Vec D, Vec S, Vec kappa_b)> refresh;
 };
 
+// The side walls' friction in solve_newton (boundary/SideWalls.hpp, the projection of eq. 30 on
+// the unit disc, with theta = 0): in a cell with k > 0 the body force -I^T (k s) acts on the
+// faces, U = I u the cell-centred velocity, and s = P_disc(s + c_s U). Linearised like the
+// cells' S: sticking (|q| <= 1, q = P(s_k) + c_s U_k), s = P(s_k) + rigid_factor c_s U (the
+// augmented form of U = 0); sliding, s = n + gamma (I - n n^T) U with n = q / |q| and
+// gamma = c_s / (|q| - 1). The Newton matrix gains I^T k G I, symmetric positive
+// semi-definite, so that J stays symmetric positive definite where it was. Its residual
+// |s - P(s + c_s U)| joins the cells' (max, 2-norm, and the sticking cells' in the rigid part).
+// k is fixed for the step (from p^n, or p_hyd; SideWalls::yield).
+struct NewtonSide {
+  Vec k = nullptr;  // dm_cell, N/m^3: the friction bound k = (2/W) tan(alpha_w) K p^+ c
+  Vec c = nullptr;  // dm_cell, s/m: the augmentation c_s (the answer does not depend on it)
+  Vec s = nullptr;  // dm_vel read as cell-centred vectors: in the start, out the solution
+};
+
 // The pressure in solve_newton (rheology.newton_pressure = "coupled"): the prediction of eq. 31
 // and the projection of eq. 32 solved as one system, so that the (u, S) it returns is
 // divergence-free and the plastic stress is in equilibrium with the step's pressure:
@@ -272,7 +287,8 @@ class ExactPlasticStep {
                               Vec S, const ExactStepOptions& opt = {},
                               const NewtonWalls* walls = nullptr, Vec c_rigid = nullptr,
                               const NewtonPressure* pressure = nullptr,
-                              const std::vector<PetscInt>* local_rows = nullptr);
+                              const std::vector<PetscInt>* local_rows = nullptr,
+                              const NewtonSide* side = nullptr);
 
  private:
   const Grid& g_;
@@ -344,8 +360,8 @@ class ExactPlasticStep {
   Vec u_best_ = nullptr, S_best_ = nullptr, sw_best_ = nullptr;  // the best iterate of a step
   void solve_local(Vec u, int it);
   // Where the largest residual of the last linearisation is (-exactpd_monitor): a cell (kind 0,
-  // q = |q|) or a Coulomb wall face (kind 1: u on the bottom or top, 2: v on the left or right;
-  // q = s_t + c_b u_t).
+  // q = |q|), a Coulomb wall face (kind 1: u on the bottom or top, 2: v on the left or right;
+  // q = s_t + c_b u_t) or a cell's side-wall friction (kind 3, q = |s + c_s U|).
   struct Worst {
     double r = -1;
     int i = -1, j = -1, kind = 0;
@@ -362,6 +378,20 @@ class ExactPlasticStep {
   std::vector<double> linw_;
   Vec wdiag_ = nullptr, wrhs_ = nullptr, sw_prev_ = nullptr, sw_newton_ = nullptr,
       kb_old_ = nullptr;
+  // The side walls (null: none): I_ the cell-centred velocity (dm_vel cell vectors <- dm_vel
+  // faces, the wall faces left out: they are not unknowns), Ms_ the cells' k G blocks (2 x 2,
+  // the cells with k > 0), SIDE_ = I_^T Ms_ I_, per cell (s0x, s0y, G00, G01, G11) of the last
+  // linearisation in lins_, the right-hand side's -I^T (k s0) in srhs_, U = I u in Us_, and
+  // the line search's copies of s.
+  const NewtonSide* side_ = nullptr;
+  Mat I_ = nullptr, Ms_ = nullptr, SIDE_ = nullptr;
+  std::vector<double> lins_;
+  Vec srhs_ = nullptr, ks0_ = nullptr, Us_ = nullptr, ss_prev_ = nullptr, ss_newton_ = nullptr,
+      ss_best_ = nullptr;
+  void side_matrices();  // I_ (once), Ms_'s pattern and SIDE_ for this step. Collective.
+  double linearise_side(Vec u, const ExactStepOptions& opt, double& l2, double& changes,
+                        double& rigid);
+  void newton_update_side(Vec u);
   // kappa_b from (u, lambda_); returns max |change| / max kappa_b.
   double refresh_kappa_b(Vec u);
   // Calls f(i, j, q, h) for the local wall faces of the Coulomb storage: q = 0 (u, bottom and

@@ -36,12 +36,14 @@ NewtonPlastic::NewtonPlastic(const Grid& g, Predictor& pred, const rheology::Par
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_));
   GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_rigid_));
   GF_PETSC(DMCreateGlobalVector(g.dm_vel(), &c_num_));
+  GF_PETSC(DMCreateGlobalVector(g.dm_cell(), &c_side_));
 }
 
 NewtonPlastic::~NewtonPlastic() {
   VecDestroy(&c_);
   VecDestroy(&c_rigid_);
   VecDestroy(&c_num_);
+  VecDestroy(&c_side_);
   VecDestroy(&p_step_);
   VecDestroy(&pres_.psi);
   MatDestroy(&pres_.G);
@@ -119,6 +121,29 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
       }
     };
   }
+  // The side walls: c_s = r_factor (rho a0/dt + 2 eta/(hx hy)) / k with the cell's own rho and
+  // eta, the fixed point's r k (SideWalls::update) over k.
+  NewtonSide sd;
+  const bool side = pred_.side_walls().active() && in.kappa_side;
+  if (side) {
+    const PetscScalar **k, **rho, **eta;
+    PetscScalar** cs;
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), in.kappa_side, &k));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.rho, &rho));
+    GF_PETSC(DMDAVecGetArrayRead(g_.dm_cell(), s.eta, &eta));
+    GF_PETSC(DMDAVecGetArray(g_.dm_cell(), c_side_, &cs));
+    for (PetscInt j = b.ys; j < b.ye(); ++j)
+      for (PetscInt i = b.xs; i < b.xe(); ++i)
+        cs[j][i] = k[j][i] > 0 ? rheo_.r_factor *
+                                     (rho[j][i] * a0dt + 2.0 * eta[j][i] / (b.hx * b.hy)) /
+                                     k[j][i]
+                               : 0.0;
+    GF_PETSC(DMDAVecRestoreArray(g_.dm_cell(), c_side_, &cs));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.eta, &eta));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), s.rho, &rho));
+    GF_PETSC(DMDAVecRestoreArrayRead(g_.dm_cell(), in.kappa_side, &k));
+    sd = {in.kappa_side, c_side_, s.s_side};
+  }
   if (coupled()) GF_PETSC(VecSet(pres_.psi, 0.0));
   std::vector<PetscInt> rows;
   // At least 2 cells: a cell's S reaches, through the node shear stresses, the faces of its
@@ -129,7 +154,8 @@ FixedPointStats NewtonPlastic::solve(State& s, const PlasticInputs& in, Vec rhs0
   try {
     r = step_.solve_newton(pred_.matrix(), rhs0, m_, in.kappa, c_, u_tilde, s.S, opt_,
                            wall ? &w : nullptr, c_rigid_, coupled() ? &pres_ : nullptr,
-                           opt_.local_margin > 0 && !coupled() ? &rows : nullptr);
+                           opt_.local_margin > 0 && !coupled() ? &rows : nullptr,
+                           side ? &sd : nullptr);
   } catch (...) {
     walls.clear_cache();
     throw;

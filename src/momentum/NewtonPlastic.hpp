@@ -10,7 +10,9 @@
 // ExactPlasticStep::solve_newton (one direct solve per iteration). The plastic matrices B, C
 // are assembled once per step (the phase on the Coulomb walls changes). c = r kappa and c_b = r_b kappa_b are the fixed point's augmentations
 // (rheology.r_factor); the converged step does not depend on them (theta = 0: the rigid zones
-// are rigid, not elastic). Not with the node copy of S, the side walls or the gate. With
+// are rigid, not elastic). With the side walls of a channel (boundary/SideWalls.hpp) their
+// friction is solved in the same Newton iteration (NewtonSide), its bound k frozen for the
+// step like kappa. Not with the node copy of S or the gate. With
 // solver.viscous_local_margin > 0 the Newton systems after the first of a step are solved on the
 // granular rows widened by that margin (ExactStepOptions::local_margin).
 #include <petscvec.h>
@@ -60,6 +62,7 @@ class NewtonPlastic {
   Vec c_ = nullptr;      // dm_cell, s: c = r kappa
   Vec c_rigid_ = nullptr;  // dm_cell, s: the rigid cells' step, from the cell's own rho, eta
   Vec c_num_ = nullptr;  // dm_vel wall storage, Pa s/m: c_b kappa_b
+  Vec c_side_ = nullptr;  // dm_cell, s/m: the side walls' augmentation c_s (NewtonSide)
   NewtonPressure pres_;  // coupled: the saddle point's fixed blocks and psi
   Vec p_step_ = nullptr;  // coupled with walls: p^n + psi for kappa_b (dm_cell, Pa)
 };

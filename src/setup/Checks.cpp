@@ -426,9 +426,9 @@ void CaseChecks::walls() {
         c.warnings.push_back(gt + k + " is set but " + gt + "x = 0: there is no gate, ignored");
   }
   // The exact solver does not cover these yet: say so rather than drop the physics.
-  if (ok({"rheology.solver", sw + "width", gt + "x", "rheology.plastic_grid"}) && c.rheology.newton) {
-    const std::string what = c.side_walls.width > 0 ? sw + "width = " + m(c.side_walls.width)
-                             : c.gate.x > 0         ? gt + "x = " + m(c.gate.x)
+  // (The side walls are: ExactPlasticStep's NewtonSide.)
+  if (ok({"rheology.solver", gt + "x", "rheology.plastic_grid"}) && c.rheology.newton) {
+    const std::string what = c.gate.x > 0         ? gt + "x = " + m(c.gate.x)
                              : c.rheology.node_copy ? std::string("rheology.plastic_grid = \"cell_node\"")
                                                     : std::string();
     if (!what.empty())

@@ -142,8 +142,8 @@ void declare_physics(Params& p) {
              "fp_tol or fp_max_iter); newton = exactly, with theta = 0, by a primal-dual "
              "semismooth Newton method (one direct solve per iteration, to newton_tol; "
              "momentum/ExactPlasticStep.hpp): the rigid zones are rigid and the step does not "
-             "depend on r_factor. Newton is not yet available with plastic_grid = cell_node, "
-             "the side walls or the gate.");
+             "depend on r_factor. Newton is not yet available with plastic_grid = cell_node "
+             "or the gate.");
   p.add_enum("rheology.newton_pressure", "projection", kNewtonPressures,
              "rheology.solver = newton: projection = the plastic step, then the projection of "
              "eq. 32 (which can set a rigid zone moving again: a held block or pile moves in "

@@ -103,8 +103,8 @@ expect_error "negative checkpoint wall time" "$base" "--set output.checkpoint_wa
   "output.checkpoint_wall_s = -5" "must be >= 0 (s)"
 expect_error "volume warning threshold of 0" "$base" "--set output.volume_warn_pct=0" \
   "output.volume_warn_pct = 0" "must be > 0 (%)"
-expect_error "the exact plastic step with side walls" "$src/cases/ar07_rough_channel.toml" \
-  "--set rheology.solver=newton" "rheology.solver" "not available with boundary.side_walls.width" \
+expect_error "the exact plastic step with the gate" "$src/cases/ar07_rough_channel.toml" \
+  "--set rheology.solver=newton" "rheology.solver" "not available with boundary.gate.x" \
   "fixed_point"
 
 # A processor grid that does not fit the ranks (a PETSc option, checked when the grid is made).
