@@ -165,7 +165,9 @@ struct NewtonWalls {
 // augmented form of U = 0); sliding, s = n + gamma (I - n n^T) U with n = q / |q| and
 // gamma = c_s / (|q| - 1). The Newton matrix gains I^T k G I, symmetric positive
 // semi-definite, so that J stays symmetric positive definite where it was. Its residual
-// |s - P(s + c_s U)| joins the cells' (max, 2-norm, and the sticking cells' in the rigid part).
+// (k / k_max) |s - P(s + c_s U)|, in units of the largest friction bound as the fixed point's
+// change (SideWalls::update), joins the cells' (max, 2-norm, and the sticking cells' in the
+// rigid part).
 // k is fixed for the step (from p^n, or p_hyd; SideWalls::yield).
 struct NewtonSide {
   Vec k = nullptr;  // dm_cell, N/m^3: the friction bound k = (2/W) tan(alpha_w) K p^+ c
@@ -386,6 +388,7 @@ class ExactPlasticStep {
   const NewtonSide* side_ = nullptr;
   Mat I_ = nullptr, Ms_ = nullptr, SIDE_ = nullptr;
   std::vector<double> lins_;
+  PetscReal side_kmax_ = 1;  // the step's largest k (N/m^3): the side residual's weight k / k_max
   Vec srhs_ = nullptr, ks0_ = nullptr, Us_ = nullptr, ss_prev_ = nullptr, ss_newton_ = nullptr,
       ss_best_ = nullptr;
   void side_matrices();  // I_ (once), Ms_'s pattern and SIDE_ for this step. Collective.
