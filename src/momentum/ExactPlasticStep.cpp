@@ -14,6 +14,50 @@
 namespace gf::momentum {
 
 namespace {
+// One point's linearisation of s = P(s + c x), P the projection on the unit disc (a cell's S
+// with x = E u, a cell's side-wall friction with x = U; see solve_newton in the header).
+struct DiscLinearisation {
+  double r;        // |s - P(s + c x)| at the iterate itself
+  double nqr;      // |s + c x| there
+  bool rigid;      // |q| <= 1 (rigid, sticking), q = P(s) + c x (retracted) or s + c x
+  double G[2][2];  // s_{k+1} = s0 + G x_{k+1}
+  double s0[2];
+};
+// retract: linearise at P(s), s retracted onto the unit disc (ExactStepOptions::retract);
+// rigid_step: the rigid class's step (c_R); gap_floor: ExactStepOptions::gap_floor.
+DiscLinearisation linearise_disc(const double s[2], const double x[2], double c, bool retract,
+                                 double rigid_step, double gap_floor) {
+  DiscLinearisation o{};
+  const double qr[2] = {s[0] + c * x[0], s[1] + c * x[1]};
+  o.nqr = std::hypot(qr[0], qr[1]);
+  const double f = o.nqr > 1 ? 1 / o.nqr : 1.0;
+  o.r = std::hypot(s[0] - f * qr[0], s[1] - f * qr[1]);
+  // The linearisation at s retracted onto the unit ball, P(s): after a yielded point's Newton
+  // step s sits on the tangent line, outside the ball by about half its rotation squared, and
+  // |q| - 1 measured from there, not from c n.x, made gamma 4 to 100 times too small in the
+  // cells at their yield limit.
+  const double ns = std::hypot(s[0], s[1]);
+  const double fs = retract && ns > 1 ? 1 / ns : 1.0;
+  const double sl[2] = {fs * s[0], fs * s[1]};
+  const double q[2] = {sl[0] + c * x[0], sl[1] + c * x[1]};
+  const double nq = std::hypot(q[0], q[1]);
+  o.rigid = nq <= 1;
+  if (o.rigid) {  // x = 0 in its augmented form, step rigid_step
+    o.G[0][0] = o.G[1][1] = rigid_step;
+    o.s0[0] = sl[0];
+    o.s0[1] = sl[1];
+  } else {  // yielded or sliding: Newton on s = q / |q|
+    const double n[2] = {q[0] / nq, q[1] / nq};
+    const double gam = c / std::max(nq - 1, gap_floor);
+    o.G[0][0] = gam * (1 - n[0] * n[0]);
+    o.G[0][1] = o.G[1][0] = -gam * n[0] * n[1];
+    o.G[1][1] = gam * (1 - n[1] * n[1]);
+    o.s0[0] = n[0];
+    o.s0[1] = n[1];
+  }
+  return o;
+}
+
 // The 3 x 3 block of a cell in M = Pi scale G L (dm_ten numbering from base), with
 // L = [[1/2, 0, -1/2], [0, 1, 0]] (the deviatoric strain rate (Dxx - Dyy)/2, Dxy) and Pi the
 // rows sxx, sxy, -sxx of the traceless tensor. Every entry is set, so the pattern stays.
@@ -711,45 +755,27 @@ ExactPlasticStep::Residual ExactPlasticStep::linearise(Vec u, const ExactStepOpt
         const double cc = c[j][i];
         const double s[2] = {lam[j][i][0], lam[j][i][1]};
         const double e[2] = {0.5 * (d[j][i][0] - d[j][i][2]), d[j][i][1]};
-        // The residual at the iterate itself: q = S + c E u.
-        const double qr[2] = {s[0] + cc * e[0], s[1] + cc * e[1]};
-        const double nqr = std::hypot(qr[0], qr[1]);
-        const double f = nqr > 1 ? 1 / nqr : 1.0;
-        // The linearisation at S retracted onto the unit ball, P(S) (ExactStepOptions::
-        // retract): after a yielded cell's Newton step S sits on the tangent line, outside the
-        // ball by about half its rotation squared, and |q| - 1 measured from there, not from
-        // c n.E u, made gamma 4 to 100 times too small in the cells at their yield limit.
-        const double ns = std::hypot(s[0], s[1]);
-        // Not with the pressure: in the unit test's channel with gravity it took 74 iterations
-        // instead of 21 (51 with the yielded cells alone retracted).
-        const double fs = opt.retract && !pres_ && ns > 1 ? 1 / ns : 1.0;
-        const double sl[2] = {fs * s[0], fs * s[1]};
-        const double q[2] = {sl[0] + cc * e[0], sl[1] + cc * e[1]};
-        const double nq = std::hypot(q[0], q[1]);
+        // Retracted (linearise_disc) not with the pressure: in the unit test's channel with
+        // gravity it took 74 iterations instead of 21 (51 with the yielded cells alone
+        // retracted). The rigid step: rigid_factor c, or the cell's own c_R.
+        const DiscLinearisation dl =
+            linearise_disc(s, e, cc, opt.retract && !pres_,
+                           boost_ * (cr ? cr[j][i] : opt.rigid_factor * cc), opt.gap_floor);
         // With the pressure, a rigid cell's incompressibility is in its augmented form too
         // (solve_saddle): c |div u| joins its residual (0 in a yielded cell after a solve).
         const double dv = pres_ ? cc * (d[j][i][0] + d[j][i][2]) : 0.0;
-        const double r = std::hypot(std::hypot(s[0] - f * qr[0], s[1] - f * qr[1]), dv);
-        if (r > worst_.r) worst_ = {r, static_cast<int>(i), static_cast<int>(j), 0, nqr};
+        const double r = std::hypot(dl.r, dv);
+        if (r > worst_.r) worst_ = {r, static_cast<int>(i), static_cast<int>(j), 0, dl.nqr};
         loc[0] = std::max(loc[0], r);
         loc[1] += r * r;
-        const signed char cls = nq <= 1 ? 1 : 2;
+        const signed char cls = dl.rigid ? 1 : 2;
         if (cls == 1) loc[2] = std::max(loc[2], r);
         if (active_[cell] != 0 && active_[cell] != cls) ++changes;
         active_[cell] = cls;
-        if (nq <= 1) {  // rigid: E u = 0 in its augmented form, step rigid_factor c
-          G[0][0] = G[1][1] = boost_ * (cr ? cr[j][i] : opt.rigid_factor * cc);
-          if (pres_) prox_[cell] = kk * G[0][0];
-          s0[0] = sl[0];
-          s0[1] = sl[1];
-        } else {  // yielded: Newton on S = q / |q|
-          const double n[2] = {q[0] / nq, q[1] / nq};
-          const double gam = cc / std::max(nq - 1, opt.gap_floor);
-          G[0][0] = gam * (1 - n[0] * n[0]);
-          G[0][1] = G[1][0] = -gam * n[0] * n[1];
-          G[1][1] = gam * (1 - n[1] * n[1]);
-          s0[0] = n[0];
-          s0[1] = n[1];
+        if (pres_ && dl.rigid) prox_[cell] = kk * dl.G[0][0];
+        for (int a = 0; a < 2; ++a) {
+          s0[a] = dl.s0[a];
+          for (int bb = 0; bb < 2; ++bb) G[a][bb] = dl.G[a][bb];
         }
       }
       double* l = &lin_[5 * cell];
@@ -894,9 +920,9 @@ double ExactPlasticStep::linearise_side(Vec u, const ExactStepOptions& opt, doub
       // U = I u + U0: U0 the wall faces' part, a constant of the step (zero on walls at rest).
       const double U0[2] = {U[0] - iu[2 * cell], U[1] - iu[2 * cell + 1]};
       const double sv[2] = {s[2 * cell], s[2 * cell + 1]};
-      const double qr[2] = {sv[0] + cs * U[0], sv[1] + cs * U[1]};
-      const double nqr = std::hypot(qr[0], qr[1]);
-      const double f = nqr > 1 ? 1 / nqr : 1.0;
+      // Linearised as the cells' S (retracted, the cells' rigid step).
+      const DiscLinearisation dl = linearise_disc(sv, U, cs, opt.retract && !pres_,
+                                                  boost_ * opt.rigid_factor * cs, opt.gap_floor);
       // Weighted by k / k_max, the force's share (as SideWalls::update measures the fixed
       // point's change): where a cell's load k is small, c_s = r (...) / k is large and s
       // turns with the velocity's round-off, a change of up to 2 in s but not in the force.
@@ -904,35 +930,17 @@ double ExactPlasticStep::linearise_side(Vec u, const ExactStepOptions& opt, doub
       // to 0.06 s, 20,520 iterations and 8 capped steps weighted, 22,066 and 10 not; a held
       // layer whose side walls are all weak (1e-7 deg, 10 steps) 143 and 151 (17 at 10 deg):
       // there every k is small, and the weight relative to the largest does not help.
-      const double r = kk / side_kmax_ * std::hypot(sv[0] - f * qr[0], sv[1] - f * qr[1]);
-      if (r > worst_.r) worst_ = {r, static_cast<int>(i), static_cast<int>(j), 3, nqr};
+      const double r = kk / side_kmax_ * dl.r;
+      if (r > worst_.r) worst_ = {r, static_cast<int>(i), static_cast<int>(j), 3, dl.nqr};
       mx = std::max(mx, r);
       l2 += r * r;
-      // Linearised at s retracted onto the disc, as the cells' S (ExactStepOptions::retract).
-      const double ns = std::hypot(sv[0], sv[1]);
-      const double fs = opt.retract && !pres_ && ns > 1 ? 1 / ns : 1.0;
-      const double sl[2] = {fs * sv[0], fs * sv[1]};
-      const double q[2] = {sl[0] + cs * U[0], sl[1] + cs * U[1]};
-      const double nq = std::hypot(q[0], q[1]);
-      const signed char cls = nq <= 1 ? 1 : 2;
+      const signed char cls = dl.rigid ? 1 : 2;
       if (cls == 1) rigid = std::max(rigid, r);
       signed char& a = active_[3 * ncell + cell];
       if (a != 0 && a != cls) ++changes;
       a = cls;
-      double G[2][2] = {{0, 0}, {0, 0}}, s0[2];
-      if (cls == 1) {  // sticking: U = 0 in its augmented form, the cells' rigid step
-        G[0][0] = G[1][1] = boost_ * opt.rigid_factor * cs;
-        s0[0] = sl[0];
-        s0[1] = sl[1];
-      } else {  // sliding: Newton on s = q / |q|
-        const double n[2] = {q[0] / nq, q[1] / nq};
-        const double gam = cs / std::max(nq - 1, opt.gap_floor);
-        G[0][0] = gam * (1 - n[0] * n[0]);
-        G[0][1] = G[1][0] = -gam * n[0] * n[1];
-        G[1][1] = gam * (1 - n[1] * n[1]);
-        s0[0] = n[0];
-        s0[1] = n[1];
-      }
+      const auto& G = dl.G;
+      const auto& s0 = dl.s0;
       double* l = &lins_[5 * cell];
       l[0] = s0[0];
       l[1] = s0[1];
