@@ -10,12 +10,18 @@
 # then continues it with --restart to its case file's end, so that a 0.2-s table and the whole
 # runs' table come from the same runs (every run then shares the same time grid: a run stopped
 # at 0.2 s shortens its last step to land there, which shifts the later steps; RHEOLOGY.md).
-# The tolerances are 4 times the default newton_tol (1e-7, src/setup/Schema.cpp) each way.
+# The tolerances are 4 times newton_tol each way: TOL=X sets it for every Newton run (the
+# default: rheology.newton_tol's default, read from src/setup/Schema.cpp).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 "$root/scripts/build.sh" > /dev/null
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
 na="${1:-16}"; nb="${2:-16}"; md="${3:-$root/docs/newton_knobs.md}"
+tol="${TOL:-$(sed -n 's/.*add_real("rheology.newton_tol", "", \([0-9.e+-]*\),.*/\1/p' \
+  "$root/src/setup/Schema.cpp")}"
+[[ -n "$tol" ]] || { echo "newton_knobs.sh: no newton_tol default found in Schema.cpp" >&2; exit 1; }
+tol_div4="$(awk -v t="$tol" 'BEGIN { printf "%g", t / 4 }')"
+tol_x4="$(awk -v t="$tol" 'BEGIN { printf "%g", t * 4 }')"
 out="$root/runs/newton_knobs"
 mkdir -p "$out"
 bin="$root/build/granflow"
@@ -35,17 +41,17 @@ for c in a b; do
   if [[ $c == a ]]; then f=cases/ar07_rough.toml; n=$na; else f=cases/ar2_smooth.toml; n=$nb; fi
   t_case="$(sed -n 's/^t_end *= *\([0-9.e+-]*\).*/\1/p' "$root/$f" | head -1)"
   A=("$root/$f" --set grid.n=$n --set output.vtk_interval=0 ${T_END:+--set time.t_end=$T_END})
-  N=("${A[@]}" --set rheology.solver=newton)
+  N=("${A[@]}" --set rheology.solver=newton ${TOL:+--set rheology.newton_tol=$TOL})
   job ${c}_newton "${N[@]}"
   job ${c}_newton_r_div4 "${N[@]}" --set rheology.r_factor=0.125
   job ${c}_newton_r_x4 "${N[@]}" --set rheology.r_factor=2
-  job ${c}_newton_tol_div4 "${N[@]}" --set rheology.newton_tol=2.5e-8
-  job ${c}_newton_tol_x4 "${N[@]}" --set rheology.newton_tol=4e-7
+  job ${c}_newton_tol_div4 "${N[@]}" --set rheology.newton_tol=$tol_div4
+  job ${c}_newton_tol_x4 "${N[@]}" --set rheology.newton_tol=$tol_x4
   job ${c}_newton_iterate "${N[@]}" --set rheology.newton_wall_load=iterate
   job ${c}_fp "${A[@]}"
   job ${c}_fp_r_div4 "${A[@]}" --set rheology.r_factor=0.125
 done
 wait
 /usr/bin/python3 "$root/scripts/validation/newton_knobs.py" "$out" "$md" \
-  "${T_END:+T_END=$T_END }${T_SPLIT:+T_SPLIT=$T_SPLIT }${RUNS:+RUNS=\"$RUNS\" }scripts/validation/newton_knobs.sh $na $nb${3:+ $3}" "$na" "$nb" \
+  "${TOL:+TOL=$TOL }${T_END:+T_END=$T_END }${T_SPLIT:+T_SPLIT=$T_SPLIT }${RUNS:+RUNS=\"$RUNS\" }scripts/validation/newton_knobs.sh $na $nb${3:+ $3}" "$na" "$nb" \
   ${RUNS:+$RUNS}
