@@ -1,6 +1,5 @@
 """Writes the table of scripts/validation/newton_knobs.sh from its runs' summary.json files."""
 import datetime
-import json
 import os
 import sys
 
@@ -21,16 +20,6 @@ ROWS = [("newton", "newton, defaults (r_factor 0.5, wall load step_start)"),
 
 def load(name):
     return gr.Run(os.path.join(out, name)).summary
-
-
-def wall_s(name, s):
-    """The run's wall time; a run continued by --restart (newton_knobs.sh's T_SPLIT) adds its
-    first part's, which summary_split.json keeps (summary.json has the continuation's alone)."""
-    split = os.path.join(out, name, "summary_split.json")
-    if os.path.exists(split):
-        with open(split) as f:
-            return s["wall_s"] + json.load(f)["wall_s"]
-    return s["wall_s"]
 
 
 def stage_move(s, r):
@@ -108,7 +97,7 @@ for c, label, n in (("a", "Case A (`cases/ar07_rough.toml`)", na), ("b", "Case B
                      f"{s['backwall_height_m']:.7f} | {t} | {s['max_p_granular_ratio']:.6f} | "
                      f"{mv} | {anys} | {same} | "
                      f"{s.get('warnings_fp_capped_steps', 0)} of {s['steps']} | {s['fp_iters_total']} | "
-                     f"{wall_s(f'{c}_{key}', s):.1f} |")
+                     f"{s['wall_s']:.1f} |")
     lines.append("")
 with open(md, "w") as f:
     f.write("\n".join(lines))

@@ -10,6 +10,8 @@
 # then continues it with --restart to its case file's end, so that a 0.2-s table and the whole
 # runs' table come from the same runs (every run then shares the same time grid: a run stopped
 # at 0.2 s shortens its last step to land there, which shifts the later steps; RHEOLOGY.md).
+# The first part's summary.json is kept as summary_split.json (the 0.2-s figures); the
+# continued run's wall_s counts both parts (a restart carries the wall clock on).
 # The tolerances are 4 times newton_tol each way: TOL=X sets it for every Newton run (the
 # default: rheology.newton_tol's default, read from src/setup/Schema.cpp).
 set -euo pipefail
