@@ -63,7 +63,8 @@ struct ExactStepOptions {
   // moves case B's peak by at most 7.7e-5 under a factor 4 in r_factor or newton_tol over 0.2 s
   // with 1 capped step in 5 runs, but case A then takes 5.9 times the iterations. Since the
   // fourteenth session the whole tolerance is 1e-7 by default (rheology.newton_tol), which
-  // holds the rigid cells as 0.1 did at 1e-6, for 1.9 to 2.8 times the iterations of 1e-6.
+  // holds the rigid cells as 0.1 did at 1e-6, for 1.9 to 2.8 times the iterations of 1e-6;
+  // since the sixteenth 5e-8 (Schema.cpp).
   double rigid_tol_factor = 1;
   double inner_rtol = 1e-12;  // Newton: relative reduction of |F|
   // solve_newton: the floor of |q| - 1 in a yielded cell's tangential stiffness

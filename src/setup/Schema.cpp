@@ -159,25 +159,24 @@ void declare_physics(Params& p) {
              "= refreshed from the Newton iterate's S and D(u~) (the paper's kappa_b^{n+1}: "
              "in a rigid zone S is not unique, and case A at n = 16 then had 294 of its 1060 "
              "steps reach newton_max_iter at 160; docs/newton_knobs.md).");
-  // 1e-7, not 1e-6 (2026-12-07, fourteenth session, docs/RHEOLOGY.md): a dead zone's and a
-  // collapse's peak granular pressure keep each step's residual (p^{n+1} = p^n + psi), and the
-  // issue's knob criterion (1e-4) needs it small. Cases A and B at n = 64 to 0.2 s (their peaks
-  // inside): r_factor / 4, x 4 and newton_tol / 4, x 4 move the peak by at most 6.8e-5 (A) and
-  // 1.15e-4 (B, newton_tol x 4; the others 7.5e-5 at most), against 2.2e-4 and 3.7e-4 at 1e-6;
-  // fronts within 2.2e-6 and back walls within 7.8e-6 at 0.2 s. The price: 1.9 (B) and 2.8 (A)
-  // times the iterations to 0.2 s, 2.5 and 2.6 over the whole runs at n = 64 (0 of 1062 and 0
-  // of 1360 steps capped; runout and back wall within 2.2e-6 of 1e-6's, both runs restarted
-  // at 0.2 s); the eight knob runs capped 2 of their 1604 steps at
-  // 1000 (case A r_factor x 4 and newton_tol / 4, residuals 1.3e-7 and 5e-8 left), where the
-  // knob runs at 1e-6 capped none.
-  p.add_real("rheology.newton_tol", "", 1e-7, Range::gt(0),
+  // 5e-8 (2026-12-08, sixteenth session; 1e-7 from 2026-12-07, 1e-6 before; docs/RHEOLOGY.md):
+  // a dead zone's and a collapse's peak granular pressure keep each step's residual
+  // (p^{n+1} = p^n + psi), and the knob criterion (1e-4) needs it small. Whole runs of
+  // cases A and B at n = 64 (to 0.2 s, then continued to the end by --restart, one time grid):
+  // r_factor / 4, x 4 and newton_tol / 4, x 4 move runout, front, back wall and peak granular
+  // pressure by at most 4.4e-5 (A) and 4.2e-5 (B), the stage times by at most 4.1e-6; the
+  // defaults' runs cap no step (0 of 1062, 0 of 1360), the knob runs three of their 9,688 at
+  // 1000 (A newton_tol / 4: two, 3.4e-8 left; B r_factor x 4: one at 0.87 s, 1.4e-7 left). At
+  // 1e-7, case B's newton_tol x 4 moved its peak by 1.15e-4; 5e-8 costs 1.24 (A) and 1.36 (B)
+  // times 1e-7's iterations (docs/newton_knobs_n64_tol5e-8_whole.md).
+  p.add_real("rheology.newton_tol", "", 5e-8, Range::gt(0),
              "rheology.solver = newton: stop when max |S - P(S + r kappa D)| over the cells and "
              "|s_t - P_b(s_t + r_b kappa_b u_t)| over the Coulomb wall faces are below this "
              "(-exactpd_rigid_tol_factor f: the rigid cells and sticking faces to f times it; "
              "a dead zone's pressure keeps their residual from step to step: at 1e-6 a factor "
              "4 in r_factor or newton_tol moved cases A's and B's peak granular pressure by up "
-             "to 3.7e-4, at 1e-7 by up to 1.15e-4, for 1.9 to 2.8 times the iterations; "
-             "docs/RHEOLOGY.md).");
+             "to 3.7e-4, at 1e-7 by up to 1.15e-4, at 5e-8 by up to 4.4e-5, for 3.2 to 3.4 "
+             "times the iterations of 1e-6; docs/RHEOLOGY.md).");
   // 1000: a step that converges never reaches the cap, so the figures of the runs that capped no
   // step are the same; the steps that reached 160 were converging slowly, not stuck
   // (docs/RHEOLOGY.md, thirteenth session). The five knob runs at n = 64 that capped steps at 160
@@ -185,8 +184,8 @@ void declare_physics(Params& p) {
   // at 160; the hardest step 267, 385 and 180 iterations), case B r_factor x 4 and newton_tol / 4
   // (2 and 1 of 1360; 289 and 177), for -2.1 to +5.3 % iterations in all. Case A's r_factor / 4
   // run then moves the peak granular pressure by 2.2e-4 (5e-6 when its step ended at the cap).
-  // (All at newton_tol 1e-6. At 1e-7, the default since, two of eight knob runs to 0.2 s cap one
-  // step each at 1000: docs/RHEOLOGY.md, fourteenth session.)
+  // (All at newton_tol 1e-6. At 1e-7 two of eight knob runs to 0.2 s capped one step each at
+  // 1000; at 5e-8, see newton_tol above: docs/RHEOLOGY.md, fourteenth and sixteenth sessions.)
   // (160, not 100, since 2026-12-06: case A at n = 128 capped 2 of its first 13 steps at 100.)
   p.add_int("rheology.newton_max_iter", "", 1000, closed(1, 1e6),
             "rheology.solver = newton: most Newton iterations per time step (a step that "
